@@ -1,0 +1,62 @@
+// Data: preallocated scratch overwritten every step (design.md). Sized once by make_data();
+// step() never allocates.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <vector>
+
+#include "engine/model.h"
+#include "engine/rotation.h"
+
+namespace kneesim::engine {
+
+// per-frame contact results, per condyle where it matters (index 0 medial, 1 lateral)
+struct ContactSummary {
+  Eigen::Vector3d force_W = Eigen::Vector3d::Zero();   // total force on the femur [N]
+  std::array<double, 2> normal_force{};  // sum of normal forces per condyle [N]
+  std::array<double, 2> area{};          // area of elements with p > 0 per condyle [m^2]
+  std::array<Eigen::Vector3d, 2> cop_T{};  // pressure-weighted centre per condyle [m], T frame
+  double peak_pressure = 0.0;            // [Pa]
+  double mean_pressure = 0.0;            // total normal force / total area [Pa]
+  double max_penetration = 0.0;          // [m]
+  double max_penetration_ratio = 0.0;    // max d / h [-]
+  int elements_in_contact = 0;
+};
+
+struct Data {
+  // contact candidates (Verlet list with skin Model::contact.margin)
+  std::vector<int> candidates;             // element indices, capacity n_elements
+  Eigen::Isometry3d X_FT_at_refresh = Eigen::Isometry3d::Identity();
+  bool candidates_valid = false;
+  long candidate_refreshes = 0;
+  double insert_radius = 0.0;              // max |centroid_T| [m], bounds rotation sweep
+
+  // per element, valid for the current candidates (zero elsewhere)
+  std::vector<double> pressure;            // contact pressure [Pa]
+  std::vector<double> penetration;         // [m]
+  std::vector<double> slip_speed;          // tangential slip speed femur vs insert [m/s]
+  std::vector<Eigen::Vector3d> slip_velocity_T;  // slip velocity in T [m/s]
+  std::vector<Eigen::Vector3d> element_force_W;  // force on the femur [N]
+
+  // current kinematics
+  std::array<std::array<double, kNumDof>, 2> q{};    // DOF values [m or rad]
+  std::array<GimbalAngles, 2> angles{};
+  std::array<std::array<Eigen::Vector3d, 3>, 2> axes{};  // gimbal axes vv, ie, fe (world)
+  Eigen::Isometry3d X_WF = Eigen::Isometry3d::Identity();  // femoral part pose
+  Eigen::Isometry3d X_WT = Eigen::Isometry3d::Identity();  // insert pose
+
+  // loads at the current time
+  double gait_pct = 0.0;
+  std::array<std::array<double, kNumDof>, 2> applied{};      // waveform loads [N or N m]
+  std::array<std::array<double, kNumDof>, 2> generalized{};  // total generalized force
+  Eigen::Vector3d restraint_force = Eigen::Vector3d::Zero();  // AP force, IE torque summary:
+                                                              // x = AP [N], y = IE [N m]
+
+  ContactSummary contact;
+};
+
+Data make_data(const Model& model);
+
+}  // namespace kneesim::engine

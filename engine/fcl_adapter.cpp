@@ -1,0 +1,72 @@
+#include "engine/fcl_adapter.h"
+
+#include <algorithm>
+#include <fcl/fcl.h>
+#include <limits>
+
+namespace kneesim::engine {
+
+using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
+
+struct MeshBvh::Impl {
+  std::shared_ptr<Bvh> model;
+  std::shared_ptr<fcl::Sphered> probe;
+};
+
+MeshBvh::MeshBvh(const std::vector<Eigen::Vector3d>& vertices,
+                 const std::vector<Eigen::Vector3i>& triangles)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->model = std::make_shared<Bvh>();
+  std::vector<fcl::Triangle> tris;
+  tris.reserve(triangles.size());
+  for (const auto& t : triangles) tris.emplace_back(t.x(), t.y(), t.z());
+  impl_->model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
+  impl_->model->addSubModel(vertices, tris);
+  impl_->model->endModel();
+  impl_->model->computeLocalAABB();
+  // a point probe: FCL measures distance between geometries, so the point is a tiny sphere
+  // whose radius is added back to the distance
+  impl_->probe = std::make_shared<fcl::Sphered>(1e-9);
+}
+
+MeshBvh::~MeshBvh() = default;
+MeshBvh::MeshBvh(MeshBvh&&) noexcept = default;
+MeshBvh& MeshBvh::operator=(MeshBvh&&) noexcept = default;
+
+double MeshBvh::closest_point(const Eigen::Vector3d& p, Eigen::Vector3d& closest,
+                              int& triangle) const {
+  fcl::CollisionObjectd mesh(impl_->model, fcl::Transform3d::Identity());
+  fcl::Transform3d X;
+  X.setIdentity();
+  X.translation() = p;
+  fcl::CollisionObjectd point(impl_->probe, X);
+  fcl::DistanceRequestd request(true);  // nearest points
+  request.gjk_solver_type = fcl::GST_INDEP;
+  fcl::DistanceResultd result;
+  fcl::distance(&point, &mesh, request, result);
+  closest = result.nearest_points[1];
+  triangle = static_cast<int>(result.b2);
+  return std::max(0.0, result.min_distance + impl_->probe->radius);
+}
+
+void MeshBvh::find_triangles_in_box(const Eigen::Isometry3d& X_MB,
+                                    const Eigen::Vector3d& half_extents,
+                                    std::vector<int>& out) const {
+  out.clear();
+  auto box = std::make_shared<fcl::Boxd>(2.0 * half_extents);
+  fcl::Transform3d X;
+  X.linear() = X_MB.linear();
+  X.translation() = X_MB.translation();
+  fcl::CollisionObjectd box_object(box, X);
+  fcl::CollisionObjectd mesh(impl_->model, fcl::Transform3d::Identity());
+  fcl::CollisionRequestd request(std::numeric_limits<int>::max() / 2, false);
+  fcl::CollisionResultd result;
+  fcl::collide(&mesh, &box_object, request, result);
+  std::vector<fcl::Contactd> contacts;
+  result.getContacts(contacts);
+  for (const auto& c : contacts) out.push_back(static_cast<int>(c.b1));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+}  // namespace kneesim::engine

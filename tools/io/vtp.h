@@ -1,0 +1,26 @@
+// VTK XML PolyData (.vtp) writer for ParaView: a triangle surface with named point and cell
+// arrays (ASCII, so files diff and open anywhere). Positions are written in millimetres.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace kneesim::io {
+
+struct VtpArray {
+  std::string name;            // with unit suffix, e.g. "pressure_MPa"
+  std::vector<double> values;  // one per point or per cell
+};
+
+struct VtpSurface {
+  std::vector<Eigen::Vector3d> points_mm;      // vertex positions [mm]
+  std::vector<Eigen::Vector3i> triangles;      // vertex indices
+  std::vector<VtpArray> point_data;
+  std::vector<VtpArray> cell_data;
+};
+
+void write_vtp(const std::filesystem::path& path, const VtpSurface& surface);
+
+}  // namespace kneesim::io

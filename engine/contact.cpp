@@ -1,0 +1,128 @@
+#include "engine/contact.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/contact_law.h"
+#include "engine/kinematics.h"
+
+namespace kneesim::engine {
+
+void update_contact_candidates(const Model& model, const Data& kin, Data& data) {
+  const Eigen::Isometry3d X_FT = kin.X_WF.inverse() * kin.X_WT;
+  if (data.candidates_valid) {
+    // largest displacement of any insert point relative to the femur since the last refresh
+    const Eigen::Isometry3d delta = data.X_FT_at_refresh.inverse() * X_FT;
+    const double angle = Eigen::AngleAxisd(delta.linear()).angle();
+    const double moved = delta.translation().norm() + angle * data.insert_radius;
+    if (moved < 0.5 * model.contact.margin) return;
+  }
+  // elements that were candidates hold stale results: clear them before the new list
+  for (int e : data.candidates) {
+    data.pressure[e] = 0.0;
+    data.penetration[e] = 0.0;
+    data.slip_speed[e] = 0.0;
+    data.slip_velocity_T[e].setZero();
+    data.element_force_W[e].setZero();
+  }
+  data.candidates.clear();
+  const InsertSurface& s = model.insert;
+  for (int e = 0; e < s.size(); ++e) {
+    const double phi = model.femur_sdf.sample(X_FT * s.centroid_T[e]);
+    if (phi < model.contact.margin) data.candidates.push_back(e);  // capacity reserved
+  }
+  data.X_FT_at_refresh = X_FT;
+  data.candidates_valid = true;
+  ++data.candidate_refreshes;
+}
+
+void calc_contact(const Model& model, const State& state, Data& data) {
+  update_contact_candidates(model, data, data);
+  const InsertSurface& s = model.insert;
+  const ContactModel& cm = model.contact;
+  const Eigen::Isometry3d X_FW = data.X_WF.inverse();
+  const Eigen::Matrix3d R_TW = data.X_WT.linear().transpose();
+  const int n = static_cast<int>(data.candidates.size());
+
+  // element-local evaluation (parallel when large; each element writes only its own slots)
+#pragma omp parallel for schedule(static) if (n > 4000) num_threads(model.threads)
+  for (int i = 0; i < n; ++i) {
+    const int e = data.candidates[i];
+    const Eigen::Vector3d c_W = data.X_WT * s.centroid_T[e];
+    const double phi = model.femur_sdf.sample(X_FW * c_W);
+    const double d = -phi;
+    if (d <= 0.0) {
+      data.pressure[e] = 0.0;
+      data.penetration[e] = 0.0;
+      data.slip_speed[e] = 0.0;
+      data.slip_velocity_T[e].setZero();
+      data.element_force_W[e].setZero();
+      continue;
+    }
+    const Eigen::Vector3d n_W = data.X_WT.linear() * s.normal_T[e];
+    const double h = s.thickness[e];
+    // relative velocity of the femoral surface over the insert at the element
+    const Eigen::Vector3d v_rel =
+        find_point_velocity(state, data, 0, c_W) - find_point_velocity(state, data, 1, c_W);
+    const double closing = -v_rel.dot(n_W);  // rate of penetration [m/s]
+    const Eigen::Vector3d v_slip = v_rel + closing * n_W;
+    const double p_elastic = ef_pressure(cm.law, cm.foundation_modulus, d, h);
+    const double p_damping =
+        cm.damping_beta * ef_stiffness(cm.law, cm.foundation_modulus, d, h) * closing;
+    const double p = std::max(0.0, p_elastic + p_damping);
+    const Eigen::Vector3d traction = p * n_W + friction_traction(cm.friction, p, v_slip,
+                                                                 cm.slip_regularization);
+    data.pressure[e] = p_elastic;
+    data.penetration[e] = d;
+    data.slip_speed[e] = v_slip.norm();
+    data.slip_velocity_T[e] = R_TW * v_slip;
+    data.element_force_W[e] = s.area[e] * traction;
+  }
+
+  // fixed-order reduction: totals, per-condyle summary, torques about the pivots
+  ContactSummary& sum = data.contact;
+  sum = ContactSummary{};
+  Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment_O = Eigen::Vector3d::Zero();
+  std::array<double, 2> weight{};
+  for (int i = 0; i < n; ++i) {
+    const int e = data.candidates[i];
+    if (data.penetration[e] <= 0.0) continue;
+    const Eigen::Vector3d c_W = data.X_WT * s.centroid_T[e];
+    const Eigen::Vector3d& f = data.element_force_W[e];
+    force += f;
+    moment_O += c_W.cross(f);
+    const double p = data.pressure[e];
+    const int side = s.medial[e] ? 0 : 1;
+    sum.normal_force[side] += p * s.area[e];
+    sum.area[side] += s.area[e];
+    sum.cop_T[side] += (p * s.area[e]) * s.centroid_T[e];
+    weight[side] += p * s.area[e];
+    sum.peak_pressure = std::max(sum.peak_pressure, p);
+    sum.max_penetration = std::max(sum.max_penetration, data.penetration[e]);
+    sum.max_penetration_ratio =
+        std::max(sum.max_penetration_ratio, data.penetration[e] / s.thickness[e]);
+    ++sum.elements_in_contact;
+  }
+  for (int side = 0; side < 2; ++side) {
+    if (weight[side] > 0.0) sum.cop_T[side] /= weight[side];
+  }
+  const double area = sum.area[0] + sum.area[1];
+  sum.mean_pressure = area > 0.0 ? (sum.normal_force[0] + sum.normal_force[1]) / area : 0.0;
+  sum.force_W = force;
+
+  // generalized forces: +force on the femur, -force on the tibia
+  for (int c = 0; c < 2; ++c) {
+    const double sign = c == 0 ? 1.0 : -1.0;
+    const Eigen::Vector3d& pivot = state.carriages[c].pivot_W;
+    const Eigen::Vector3d torque = sign * (moment_O - pivot.cross(force));
+    auto& Q = data.generalized[c];
+    Q[0] += sign * force.x();
+    Q[1] += sign * force.y();
+    Q[2] += sign * force.z();
+    Q[3] += torque.dot(data.axes[c][0]);
+    Q[4] += torque.dot(data.axes[c][1]);
+    Q[5] += torque.dot(data.axes[c][2]);
+  }
+}
+
+}  // namespace kneesim::engine

@@ -1,0 +1,66 @@
+#include "engine/simulate.h"
+
+#include <cmath>
+
+#include "engine/reference_integrator.h"
+
+namespace kneesim::engine {
+
+Frame make_frame(const State& state, const Data& data) {
+  Frame f;
+  f.gait_pct = data.gait_pct;
+  f.time = state.time;
+  f.q = data.q;
+  f.applied = data.applied;
+  f.restraint = data.restraint_force;
+  f.contact = data.contact;
+  return f;
+}
+
+RunResult simulate(const Model& model, State& state, Data& data, const RunOptions& options) {
+  if (model.integrator == IntegratorKind::kCvode) {
+    return simulate_reference(model, state, data, options);
+  }
+  RunResult result;
+  const double t0 = state.time;
+  const double t_end = t0 + options.cycles * model.period;
+  const double last_start = t_end - model.period;
+  const long total_steps = std::lround((t_end - t0) / model.dt);
+  const double frame_dt = model.period / options.frames_per_cycle;
+  int next_frame = 0;
+  size_t next_map = 0;
+  result.maps.reserve(options.map_pcts.size());
+  long report_every = std::max(1L, total_steps / 200);
+  for (long n = 0; n < total_steps; ++n) {
+    const double t = state.time;
+    const StepStatus status = step(model, state, data);
+    // data now describes time t (forces at the start of the step)
+    if (t >= last_start - 0.5 * model.dt) {
+      const double local = t - last_start;
+      if (next_frame < options.frames_per_cycle && local >= next_frame * frame_dt - 0.5 * model.dt) {
+        result.frames.push_back(make_frame(state, data));
+        result.frames.back().time = t;
+        ++next_frame;
+      }
+      if (next_map < options.map_pcts.size() &&
+          local >= options.map_pcts[next_map] / 100.0 * model.period - 0.5 * model.dt) {
+        result.maps.push_back(data.pressure);
+        ++next_map;
+      }
+      if (options.observer) options.observer(model, state, data);
+    }
+    if (status != StepStatus::kOk) {
+      result.status = status;
+      result.failed_at = state.time;
+      break;
+    }
+    if (options.progress && n % report_every == 0) {
+      options.progress(static_cast<double>(n) / total_steps);
+    }
+  }
+  result.steps = state.step;
+  result.candidate_refreshes = data.candidate_refreshes;
+  return result;
+}
+
+}  // namespace kneesim::engine

@@ -1,0 +1,47 @@
+// Runs whole gait cycles on a const Model and records one frame per 1 % of the last cycle.
+// The driver around step(): progress, frame sampling, the per-step observer used by wear, and
+// the clean stop on numerical trouble (the frames recorded so far are kept).
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "engine/data.h"
+#include "engine/model.h"
+#include "engine/state.h"
+#include "engine/step.h"
+
+namespace kneesim::engine {
+
+struct Frame {
+  double gait_pct = 0.0;                                // [%]
+  double time = 0.0;                                    // [s]
+  std::array<std::array<double, kNumDof>, 2> q{};       // DOF values [m or rad]
+  std::array<std::array<double, kNumDof>, 2> applied{}; // waveform loads [N or N m]
+  Eigen::Vector3d restraint = Eigen::Vector3d::Zero();  // AP force [N], IE torque [N m]
+  ContactSummary contact;
+};
+
+struct RunOptions {
+  int cycles = 2;            // whole gait cycles; frames come from the last one
+  int frames_per_cycle = 100;
+  std::vector<double> map_pcts;  // gait % at which to keep the per-element pressure map
+  std::function<void(double)> progress;  // fraction done, called now and then
+  // called after every step of the last cycle (wear accumulation)
+  std::function<void(const Model&, const State&, const Data&)> observer;
+};
+
+struct RunResult {
+  StepStatus status = StepStatus::kOk;
+  double failed_at = 0.0;             // time of the failure [s]
+  std::vector<Frame> frames;          // last cycle, one per 1 %
+  std::vector<std::vector<double>> maps;  // pressure per element [Pa], one per map_pcts
+  long steps = 0;
+  long candidate_refreshes = 0;
+};
+
+Frame make_frame(const State& state, const Data& data);
+
+RunResult simulate(const Model& model, State& state, Data& data, const RunOptions& options);
+
+}  // namespace kneesim::engine

@@ -1,0 +1,225 @@
+#include "engine/step.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "engine/contact.h"
+#include "engine/contact_law.h"
+#include "engine/kinematics.h"
+
+namespace kneesim::engine {
+namespace {
+
+double gait_pct_at(const Model& model, double t) {
+  double pct = std::fmod(100.0 * t / model.period, 100.0);
+  if (pct < 0.0) pct += 100.0;
+  return pct;
+}
+
+// prescribed or locked value of a DOF at time t [m or rad]
+double target_value(const Model& model, const DofModel& dof, double t) {
+  if (dof.mode == DofMode::kPrescribed && dof.channel >= 0) {
+    return dof.initial + dof.scale * model.gait.value(dof.channel, gait_pct_at(model, t));
+  }
+  return dof.initial;
+}
+
+// stage: waveform loads at the current time, into data.applied and data.generalized
+void apply_loads(const Model& model, const State& state, Data& data) {
+  data.gait_pct = gait_pct_at(model, state.time);
+  for (int c = 0; c < 2; ++c) {
+    const CarriageModel& cm = model.carriages[c];
+    auto& Q = data.generalized[c];
+    const Eigen::Vector3d r_W = state.carriages[c].R_WB * cm.load_point_B;
+    for (int i = 0; i < kNumDof; ++i) {
+      const DofModel& dof = cm.dofs[i];
+      double f = 0.0;
+      if (dof.mode == DofMode::kForce && dof.channel >= 0) {
+        f = dof.scale * model.gait.value(dof.channel, data.gait_pct);
+      }
+      data.applied[c][i] = f;
+      if (f == 0.0) continue;
+      Q[i] += f;
+      if (!is_rotation(i)) {
+        // a force along axis i through the load point also produces a moment about the pivot
+        Eigen::Vector3d F = Eigen::Vector3d::Zero();
+        F[i] = f;
+        const Eigen::Vector3d torque = r_W.cross(F);
+        for (int r = 0; r < 3; ++r) Q[3 + r] += torque.dot(data.axes[c][r]);
+      }
+    }
+  }
+}
+
+// stage: spring-gap soft-tissue restraint on the tibial carriage (physics.md section 2)
+void apply_restraint(const Model& model, Data& data) {
+  auto& Q = data.generalized[1];
+  const double ap = data.q[1][0], ie = data.q[1][4];
+  double force_ap = 0.0, torque_ie = 0.0;
+  for (const RestraintSpring& s : model.restraint) {
+    switch (s.kind) {
+      case RestraintKind::kTranslational: {
+        // a spring attached at z_arm: the IE rotation moves its end by z sin(ie) along x
+        const double f = spring_gap_force(s, ap + s.z_arm * std::sin(ie));
+        force_ap += f;
+        torque_ie += s.z_arm * std::cos(ie) * f;
+        break;
+      }
+      case RestraintKind::kRotational:
+        torque_ie += spring_gap_force(s, ie);
+        break;
+    }
+  }
+  Q[0] += force_ap;
+  Q[4] += torque_ie;
+  data.restraint_force = Eigen::Vector3d(force_ap, torque_ie, 0.0);
+}
+
+// stage: central-difference update of one carriage (velocity half step, SO(3) rotation)
+void integrate_carriage(const Model& model, int c, State& state, const Data& data) {
+  const CarriageModel& cm = model.carriages[c];
+  CarriageState& cs = state.carriages[c];
+  const double dt = model.dt, t1 = state.time + dt;
+  bool project_rotation = false;
+  for (int i = 0; i < kNumDof; ++i) {
+    const DofModel& dof = cm.dofs[i];
+    double& rate = cs.rate[i];
+    switch (dof.mode) {
+      case DofMode::kLocked:
+        rate = 0.0;
+        project_rotation |= is_rotation(i);
+        break;
+      case DofMode::kPrescribed:
+        rate = (target_value(model, dof, t1) - data.q[c][i]) / dt;
+        project_rotation |= is_rotation(i);
+        break;
+      case DofMode::kFree:
+      case DofMode::kForce:
+        rate += dt * (data.generalized[c][i] - dof.damping * rate) / dof.mass;
+        break;
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    const DofModel& dof = cm.dofs[i];
+    if (dof.mode == DofMode::kLocked || dof.mode == DofMode::kPrescribed) {
+      cs.pivot_W[i] = cm.pivot0_W[i] + target_value(model, dof, t1);
+    } else {
+      cs.pivot_W[i] += dt * cs.rate[i];
+    }
+  }
+  const Eigen::Vector3d w_W = data.axes[c][0] * cs.rate[3] + data.axes[c][1] * cs.rate[4] +
+                              data.axes[c][2] * cs.rate[5];
+  cs.R_WB = update_rotation(cs.R_WB, w_W, dt);
+  if (project_rotation) {
+    // locked and prescribed angles are constraints: put the rotation back on them exactly
+    GimbalAngles g = find_gimbal_angles(cs.R_WB);
+    double* angle[3] = {&g.vv, &g.ie, &g.fe};
+    for (int r = 0; r < 3; ++r) {
+      const DofModel& dof = cm.dofs[3 + r];
+      if (dof.mode == DofMode::kLocked || dof.mode == DofMode::kPrescribed) {
+        *angle[r] = target_value(model, dof, t1);
+      }
+    }
+    cs.R_WB = gimbal_rotation(g);
+  }
+}
+
+bool is_finite(const State& state) {
+  for (const CarriageState& cs : state.carriages) {
+    if (!cs.pivot_W.allFinite() || !cs.R_WB.allFinite()) return false;
+    for (double r : cs.rate)
+      if (!std::isfinite(r)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+const char* to_string(StepStatus status) {
+  switch (status) {
+    case StepStatus::kOk:
+      return "ok";
+    case StepStatus::kNotFinite:
+      return "a position or velocity became NaN or infinite";
+    case StepStatus::kRunawayPenetration:
+      return "runaway penetration: the femoral component sank through the insert's elastic "
+             "layer";
+  }
+  return "unknown";
+}
+
+void calc_forces(const Model& model, const State& state, Data& data) {
+  // kinematics: DOF values, gimbal axes, part poses
+  update_kinematics(model, state, data);
+  for (auto& Q : data.generalized) Q.fill(0.0);
+  // loads: gait waveforms at t (axial force, AP force, IE torque)
+  apply_loads(model, state, data);
+  // contact search and forces: elastic foundation + regularized Coulomb friction
+  calc_contact(model, state, data);
+  // springs: spring-gap soft-tissue restraint on the tibial carriage
+  apply_restraint(model, data);
+}
+
+StepStatus step(const Model& model, State& state, Data& data) {
+  // forces at x(n) with velocities v(n - 1/2)
+  calc_forces(model, state, data);
+  // central-difference update: v(n + 1/2), x(n + 1), R(n + 1) on SO(3)
+  for (int c = 0; c < 2; ++c) integrate_carriage(model, c, state, data);
+  state.time += model.dt;
+  ++state.step;
+  // checks: NaN, runaway penetration
+  if (!is_finite(state)) return StepStatus::kNotFinite;
+  if (data.contact.max_penetration_ratio > model.contact.runaway_fraction) {
+    return StepStatus::kRunawayPenetration;
+  }
+  return StepStatus::kOk;
+}
+
+State make_initial_state(const Model& model) {
+  State state;
+  for (int c = 0; c < 2; ++c) {
+    const CarriageModel& cm = model.carriages[c];
+    std::array<double, kNumDof> q{};
+    for (int i = 0; i < kNumDof; ++i) q[i] = target_value(model, cm.dofs[i], 0.0);
+    state.carriages[c].pivot_W = cm.pivot0_W + Eigen::Vector3d(q[0], q[1], q[2]);
+    state.carriages[c].R_WB = gimbal_rotation({q[3], q[4], q[5]});
+    state.carriages[c].rate.fill(0.0);
+  }
+  return state;
+}
+
+Data make_data(const Model& model) {
+  Data data;
+  const int n = model.insert.size();
+  data.candidates.reserve(n);
+  data.pressure.assign(n, 0.0);
+  data.penetration.assign(n, 0.0);
+  data.slip_speed.assign(n, 0.0);
+  data.slip_velocity_T.assign(n, Eigen::Vector3d::Zero());
+  data.element_force_W.assign(n, Eigen::Vector3d::Zero());
+  for (int e = 0; e < n; ++e) {
+    data.insert_radius = std::max(data.insert_radius, model.insert.centroid_T[e].norm());
+  }
+  return data;
+}
+
+uint64_t hash_state(const State& state) {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](const void* p, size_t n) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < n; ++i) {
+      h ^= b[i];
+      h *= 1099511628211ull;
+    }
+  };
+  mix(&state.time, sizeof state.time);
+  mix(&state.step, sizeof state.step);
+  for (const CarriageState& cs : state.carriages) {
+    mix(cs.pivot_W.data(), 3 * sizeof(double));
+    mix(cs.R_WB.data(), 9 * sizeof(double));
+    mix(cs.rate.data(), kNumDof * sizeof(double));
+  }
+  return h;
+}
+
+}  // namespace kneesim::engine

@@ -1,0 +1,211 @@
+// Waveform reader and interpolator. References: the half-cosine formula of physics.md section 3
+// (ISO 14243-3 reproduces flexion 8 (1 - cos(pi t / 15)) over 0-15 % and the published axial
+// forces at its key points exactly), linear interpolation by hand, periodicity, and the exact
+// error sentences.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+
+#include "engine/errors.h"
+#include "loads/iso14243/conventions.h"
+#include "loads/iso14243/waveform.h"
+#include "temp_dir.h"
+
+using kneesim::InputError;
+using kneesim::loads::Waveform;
+using kneesim::test::TempDir;
+
+namespace {
+
+std::filesystem::path source_dir() {
+  const char* s = std::getenv("KNEESIM_SOURCE_DIR");
+  return s ? std::filesystem::path(s) : std::filesystem::path(KNEESIM_TEST_SOURCE_DIR);
+}
+
+Waveform shipped(const char* name) { return Waveform::load(source_dir() / "loads/iso14243" / name); }
+
+// the message of the InputError thrown by loading `text`, or "" when none is thrown
+std::string load_error(const std::string& text) {
+  TempDir dir;
+  auto file = dir.write("w.csv", text);
+  try {
+    Waveform::load(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("shipped ISO 14243-1 key points reproduce the published values") {
+  Waveform w = shipped("iso14243_1_approx.csv");
+  const int axial = w.channel("axial_force_N");
+  const int flex = w.channel("flexion_deg");
+  REQUIRE(axial >= 0);
+  REQUIRE(flex >= 0);
+  CHECK(w.channel("ap_force_N") >= 0);
+  CHECK(w.channel("ie_torque_Nm") >= 0);
+  CHECK(w.channel("nope") == -1);
+  // key points are hit exactly
+  CHECK(w.value(axial, 13.0) == doctest::Approx(2600.0).epsilon(1e-12));
+  CHECK(w.value(axial, 3.0) == doctest::Approx(1887.3).epsilon(1e-12));
+  CHECK(w.value(axial, 7.0) == doctest::Approx(1174.6).epsilon(1e-12));
+  CHECK(w.value(axial, 0.0) == doctest::Approx(167.6).epsilon(1e-12));
+  // flexion over 0-15 % is 8 (1 - cos(pi t / 15)) deg
+  for (double t = 0.0; t <= 15.0; t += 0.25) {
+    CHECK(std::abs(w.value(flex, t) - 8.0 * (1.0 - std::cos(std::numbers::pi * t / 15.0))) <
+          1e-9);
+  }
+  // the derivative of that curve is (8 pi / 15) sin(pi t / 15) per %
+  for (double t = 0.5; t < 15.0; t += 0.5) {
+    CHECK(std::abs(w.derivative(flex, t) -
+                   8.0 * std::numbers::pi / 15.0 * std::sin(std::numbers::pi * t / 15.0)) < 1e-9);
+  }
+}
+
+TEST_CASE("waveforms are periodic over 100 %") {
+  Waveform w = shipped("iso14243_1_approx.csv");
+  for (int c = 0; c < w.channel_count(); ++c) {
+    for (double p = 0.0; p < 100.0; p += 0.37) {
+      const double v = w.value(c, p);
+      CHECK(std::abs(w.value(c, p + 100.0) - v) < 1e-9 * (1.0 + std::abs(v)));
+      CHECK(std::abs(w.value(c, p - 200.0) - v) < 1e-9 * (1.0 + std::abs(v)));
+      CHECK(std::abs(w.derivative(c, p + 300.0) - w.derivative(c, p)) < 1e-6);
+    }
+  }
+}
+
+TEST_CASE("derivative matches a central finite difference") {
+  Waveform w = shipped("iso14243_3_approx.csv");
+  const double h = 1e-5;
+  for (int c = 0; c < w.channel_count(); ++c) {
+    for (double p = 0.3; p < 100.0; p += 1.1) {
+      const double fd = (w.value(c, p + h) - w.value(c, p - h)) / (2 * h);
+      CHECK(std::abs(w.derivative(c, p) - fd) < 1e-4 * (1.0 + std::abs(fd)));
+    }
+  }
+}
+
+TEST_CASE("ISO 14243-3-shaped default has the displacement channels in range") {
+  Waveform w = shipped("iso14243_3_approx.csv");
+  const int ap = w.channel("ap_mm");
+  const int ie = w.channel("ie_deg");
+  REQUIRE(ap >= 0);
+  REQUIRE(ie >= 0);
+  double ap_min = 1e9, ap_max = -1e9, ie_min = 1e9, ie_max = -1e9;
+  for (double p = 0.0; p < 100.0; p += 0.1) {
+    ap_min = std::min(ap_min, w.value(ap, p));
+    ap_max = std::max(ap_max, w.value(ap, p));
+    ie_min = std::min(ie_min, w.value(ie, p));
+    ie_max = std::max(ie_max, w.value(ie, p));
+  }
+  CHECK(ap_min == doctest::Approx(-5.0).epsilon(1e-9));
+  CHECK(ap_max == doctest::Approx(0.0));
+  CHECK(ie_min == doctest::Approx(-1.0).epsilon(1e-9));
+  CHECK(ie_max == doctest::Approx(5.0).epsilon(1e-9));
+  CHECK(w.value(w.channel("axial_force_N"), 13.0) == doctest::Approx(2600.0));
+}
+
+TEST_CASE("table form interpolates linearly and wraps to the first row") {
+  TempDir dir;
+  auto file = dir.write("t.csv",
+                        "# a table\n"
+                        "gait_pct,flexion_deg,axial_force_N\n"
+                        "10, 0, 100\n"
+                        "20, 10, 300\n"
+                        "\n"
+                        "60, 30, 200\n");
+  Waveform w = Waveform::load(file);
+  CHECK(w.channel_names() == std::vector<std::string>{"flexion_deg", "axial_force_N"});
+  CHECK(w.interpolation(0) == kneesim::loads::Interpolation::linear);
+  CHECK(w.value(0, 15.0) == doctest::Approx(5.0));
+  CHECK(w.value(1, 40.0) == doctest::Approx(250.0));
+  CHECK(w.derivative(1, 40.0) == doctest::Approx(-2.5));
+  // from 60 % (30) round to 110 % (0): slope -30/50 per %
+  CHECK(w.value(0, 85.0) == doctest::Approx(15.0));
+  CHECK(w.value(0, 5.0) == doctest::Approx(3.0));
+  CHECK(w.value(0, 105.0) == doctest::Approx(3.0));
+  CHECK(w.points_pct(0) == std::vector<double>{10, 20, 60});
+}
+
+TEST_CASE("key points need not start at 0 or end at 100") {
+  Waveform w = Waveform::from_keypoints({{"x_N", {20.0, 70.0}, {1.0, 3.0}}});
+  // 70 -> 120 back to 1: midway (95 %) is the average
+  CHECK(w.value(0, 95.0) == doctest::Approx(2.0));
+  CHECK(w.value(0, 45.0) == doctest::Approx(2.0));
+  CHECK(w.value(0, 20.0) == doctest::Approx(1.0));
+  CHECK(w.derivative(0, 20.0) == doctest::Approx(0.0));
+}
+
+TEST_CASE("conventions flip AP and IE and mirror a left knee") {
+  Waveform w = Waveform::from_keypoints({{"flexion_deg", {0, 50}, {0, 10}},
+                                         {"ap_force_N", {0, 50}, {1, 2}},
+                                         {"ie_torque_Nm", {0, 50}, {3, 4}},
+                                         {"ml_mm", {0, 50}, {5, 6}},
+                                         {"vv_deg", {0, 50}, {7, 8}}});
+  kneesim::loads::WaveformConventions conv;
+  conv.ap_sign = -1.0;
+  Waveform a = apply_conventions(w, conv);
+  CHECK(a.value(1, 0.0) == -1.0);
+  CHECK(a.value(2, 0.0) == 3.0);
+  CHECK(a.value(0, 50.0) == 10.0);
+  conv = {};
+  conv.left_knee = true;
+  conv.ie_sign = -1.0;
+  Waveform b = apply_conventions(w, conv);
+  CHECK(b.value(0, 50.0) == 10.0);  // flexion unchanged by the mirror
+  CHECK(b.value(1, 0.0) == 1.0);    // AP unchanged
+  CHECK(b.value(2, 0.0) == 3.0);    // IE flipped twice: mirror, then ie_sign
+  CHECK(b.value(3, 0.0) == -5.0);   // ML mirrored
+  CHECK(b.value(4, 0.0) == -7.0);   // VV mirrored
+}
+
+TEST_CASE("every load error names the file and the place") {
+  TempDir dir;
+  const auto missing = dir.path / "nope.csv";
+  try {
+    Waveform::load(missing);
+    FAIL("no error for a missing file");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()) == missing.string() + ": file not found (or not a regular file).");
+  }
+  CHECK(load_error("gait_pct,a_N\n0,1\n10,x1\n").find(": line 3, column 'a_N': 'x1' is not a "
+                                                      "finite number.") != std::string::npos);
+  CHECK(load_error("gait_pct,a_N\n0,1\n10,nan\n").find("'nan' is not a finite number") !=
+        std::string::npos);
+  CHECK(load_error("gait_pct,a_N,b_N\n0,1,2\n10,1\n")
+            .find(": line 3 has 2 cells but the header has 3 columns.") != std::string::npos);
+  CHECK(load_error("gait_pct,a_N\n0,1\n10,2\n10,3\n")
+            .find(": line 4, column 'gait_pct': 10 does not increase over the previous row's "
+                  "value 10 (gait_pct must be strictly increasing).") != std::string::npos);
+  CHECK(load_error("gait_pct,a_N\n0,1\n101,2\n")
+            .find(": line 3, column 'gait_pct': 101 is outside the allowed range 0..100 %.") !=
+        std::string::npos);
+  CHECK(load_error("gait_pct,a_N\n-1,1\n10,2\n").find("-1 is outside the allowed range") !=
+        std::string::npos);
+  CHECK(load_error("gait_pct,a_N\n5,1\n").find("channel 'a_N' has 1 point(s); at least 2 are "
+                                               "needed.") != std::string::npos);
+  CHECK(load_error("time,a_N\n5,1\n").find("the first column must be 'gait_pct', found 'time'") !=
+        std::string::npos);
+  CHECK(load_error("# only a comment\n").find(": no header line found.") != std::string::npos);
+  CHECK(load_error("# form: spline\ngait_pct,a\n0,1\n5,2\n")
+            .find("'# form: spline' is not a known form") != std::string::npos);
+  // key-point form
+  const std::string kp = "# form: keypoints\nchannel,gait_pct,value\n";
+  CHECK(load_error(kp + "a_N,0,1\nb_N,0,1\nb_N,5,1\na_N,3,2\na_N,2,3\n")
+            .find(": line 7, column 'gait_pct': 2 does not increase over the previous 'a_N' key "
+                  "point's value 3") != std::string::npos);
+  CHECK(load_error(kp + "a_N,0,1\na_N,x,1\n").find(": line 4, column 'gait_pct': 'x' is not") !=
+        std::string::npos);
+  CHECK(load_error(kp + "a_N,0,1\na_N,3,1\nb_N,4,1\n")
+            .find("channel 'b_N' has 1 point(s); at least 2 are needed.") != std::string::npos);
+  CHECK(load_error(kp + "a_N,0,1\na_N,300,1\n").find("300 is outside the allowed range 0..100") !=
+        std::string::npos);
+  CHECK(load_error("# form: keypoints\ngait_pct,a_N\n0,1\n").find(
+            "a keypoints file needs the header 'channel,gait_pct,value'") != std::string::npos);
+  // a good file loads without error
+  CHECK(load_error(kp + "a_N,0,1\na_N,3,1\n").empty());
+}

@@ -8,6 +8,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <stdexcept>
 
@@ -131,9 +132,14 @@ NonlinearResult solve_nonlinear(const ResidualFn& residual, const Eigen::VectorX
   if (user.error) std::rethrow_exception(user.error);
 
   result.residual_norm = scaled_max_norm(residual, result.x, options.f_scale);
-  result.converged = flag >= 0 && result.residual_norm <= options.residual_tol;
+  // judged on the residual itself: at round-off level KINSOL's line search may report that it
+  // cannot move (flag -5) although the iterate already meets the tolerance
+  result.converged = result.residual_norm <= options.residual_tol;
   if (!result.converged) {
-    result.message = user.message.empty() ? "KINSOL flag " + std::to_string(flag) : user.message;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " (flag %d, scaled residual %.3g after %ld iterations)", flag,
+                  result.residual_norm, iters);
+    result.message = (user.message.empty() ? std::string("KINSOL failed") : user.message) + buf;
   }
   return result;
 }

@@ -37,7 +37,7 @@ struct NonlinearOptions {
 
 struct NonlinearResult {
   Eigen::VectorXd x;        // solution (or last iterate when not converged) [x units], (n)
-  bool converged = false;   // KINSOL reported success and the residual is below tolerance
+  bool converged = false;   // max-norm of the scaled residual at x is within residual_tol
   long iterations = 0;      // Newton iterations taken [-]
   double residual_norm = 0.0;  // max-norm of the scaled residual at x [-]
   std::string message;      // empty on success, otherwise the KINSOL reason

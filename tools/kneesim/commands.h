@@ -8,5 +8,6 @@
 namespace kneesim::cli {
 
 void add_run_command(CLI::App& app);
+void add_bor_command(CLI::App& app);
 
 }  // namespace kneesim::cli

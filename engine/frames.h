@@ -30,9 +30,9 @@
 
 namespace kneesim::frames {
 
-inline const Eigen::Vector3d kAnterior{1.0, 0.0, 0.0};  // unit, +x [-]
-inline const Eigen::Vector3d kSuperior{0.0, 1.0, 0.0};  // unit, +y [-]
-inline const Eigen::Vector3d kLateral{0.0, 0.0, 1.0};   // unit, +z of a right knee [-]
+inline const Eigen::Vector3d kAnteriorAxis{1.0, 0.0, 0.0};  // unit, +x [-]
+inline const Eigen::Vector3d kSuperiorAxis{0.0, 1.0, 0.0};  // unit, +y [-]
+inline const Eigen::Vector3d kLateralAxis{0.0, 0.0, 1.0};   // unit, +z of a right knee [-]
 
 // condyle indices used wherever medial/lateral arrays appear
 constexpr int kMedial = 0;   // the condyle at z < 0

@@ -1,0 +1,162 @@
+#include "models/mesh_io.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <assimp/Importer.hpp>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <unordered_map>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "engine/errors.h"
+
+namespace kneesim::models {
+namespace {
+
+[[noreturn]] void fail(const std::filesystem::path& file, const std::string& what) {
+  throw InputError(file.string() + ": " + what);
+}
+
+// the bit pattern of a float position (-0 folded into +0), for exact welding
+struct PositionKey {
+  std::array<std::uint32_t, 3> bits;  // IEEE bits of x, y, z
+  bool operator==(const PositionKey& o) const { return bits == o.bits; }
+};
+struct PositionHash {
+  std::size_t operator()(const PositionKey& k) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (std::uint32_t b : k.bits) h = (h ^ b) * 1099511628211ull;
+    return static_cast<std::size_t>(h);
+  }
+};
+PositionKey position_key(const aiVector3D& v) {
+  PositionKey k;
+  const float f[3] = {v.x + 0.0f, v.y + 0.0f, v.z + 0.0f};
+  std::memcpy(k.bits.data(), f, sizeof f);
+  return k;
+}
+
+// collects every triangle of every mesh of the scene (node transforms already applied)
+TriMesh gather_and_weld(const aiScene& scene) {
+  TriMesh m;
+  std::unordered_map<PositionKey, int, PositionHash> index;  // exact position -> welded vertex
+  for (unsigned k = 0; k < scene.mNumMeshes; ++k) {
+    const aiMesh& mesh = *scene.mMeshes[k];
+    std::vector<int> welded(mesh.mNumVertices);
+    for (unsigned i = 0; i < mesh.mNumVertices; ++i) {
+      const aiVector3D& v = mesh.mVertices[i];
+      auto [it, inserted] = index.emplace(position_key(v), static_cast<int>(m.vertices.size()));
+      if (inserted) m.vertices.emplace_back(v.x, v.y, v.z);
+      welded[i] = it->second;
+    }
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines left by Triangulate
+      m.triangles.emplace_back(welded[face.mIndices[0]], welded[face.mIndices[1]],
+                               welded[face.mIndices[2]]);
+    }
+  }
+  return m;
+}
+
+void put_f32(std::string& out, double v) {
+  const float f = static_cast<float>(v);
+  char b[4];
+  std::memcpy(b, &f, 4);
+  out.append(b, 4);
+}
+
+}  // namespace
+
+TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& options) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) fail(file, "mesh file not found.");
+  double scale = 1.0;
+  if (options.units == "mm") {
+    scale = 1e-3;
+  } else if (options.units != "m") {
+    fail(file, "units '" + options.units + "' are not allowed; use \"m\" or \"mm\".");
+  }
+  const Eigen::Matrix3d& R = options.rotation;
+  if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-9 || R.determinant() < 0.0) {
+    fail(file, "the import rotation is not a proper rotation matrix (orthonormal, det +1).");
+  }
+
+  // read with assimp: triangulate and flatten the node hierarchy
+  Assimp::Importer importer;
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_COLORS);
+  const aiScene* scene = importer.ReadFile(
+      file.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                         aiProcess_RemoveComponent | aiProcess_SortByPType);
+  if (scene == nullptr) {
+    fail(file, std::string("cannot be read as a mesh (assimp: ") + importer.GetErrorString() +
+                   "); STL, OBJ and PLY are supported.");
+  }
+  TriMesh m = gather_and_weld(*scene);
+  if (m.triangles.empty()) fail(file, "the mesh has no triangles.");
+
+  // units, rotation, mirror, translation
+  for (Eigen::Vector3d& v : m.vertices) {
+    v = R * (scale * v);
+    if (options.mirror_z) v.z() = -v.z();
+    v += options.translation_m;
+  }
+  if (options.mirror_z) m = flipped(m);
+
+  if (options.require_closed) {
+    const MeshCheck c = check_mesh(m);
+    if (!c.closed()) {
+      fail(file, "the mesh is not closed: " + std::to_string(c.boundary_edges) +
+                     " open edges and " + std::to_string(c.nonmanifold_edges) +
+                     " non-manifold edges; a closed manifold surface is required.");
+    }
+  }
+  return m;
+}
+
+void save_mesh(const std::filesystem::path& file, const TriMesh& mesh) {
+  // header, count, then per triangle: normal, three vertices, attribute word
+  std::string out(80, '\0');
+  const char title[] = "kneesim binary STL, metres";
+  std::memcpy(out.data(), title, sizeof title - 1);
+  const std::uint32_t n = static_cast<std::uint32_t>(mesh.triangles.size());
+  out.append(reinterpret_cast<const char*>(&n), 4);
+  const std::vector<Eigen::Vector3d> normals = face_normals(mesh);
+  out.reserve(out.size() + 50 * static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k) put_f32(out, normals[i][k]);
+    for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < 3; ++k) put_f32(out, mesh.vertices[mesh.triangles[i][c]][k]);
+    }
+    out.append(2, '\0');
+  }
+
+  // temporary file beside the target, then rename
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  std::random_device rd;
+  const std::filesystem::path tmp =
+      file.string() + ".tmp" + std::to_string(rd() % 1000000);
+  {
+    std::ofstream os(tmp, std::ios::binary | std::ios::trunc);
+    os.write(out.data(), static_cast<std::streamsize>(out.size()));
+    os.flush();
+    if (!os) {
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw std::runtime_error(file.string() + ": cannot write the STL file.");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, file, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error(file.string() + ": cannot move the written STL into place.");
+  }
+}
+
+}  // namespace kneesim::models

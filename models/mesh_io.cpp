@@ -94,8 +94,10 @@ TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& op
       file.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
                          aiProcess_RemoveComponent | aiProcess_SortByPType);
   if (scene == nullptr) {
-    fail(file, std::string("cannot be read as a mesh (assimp: ") + importer.GetErrorString() +
-                   "); STL, OBJ and PLY are supported.");
+    // assimp reports a well-formed file without faces as an error of its own
+    const std::string why = importer.GetErrorString();
+    if (why.find("No output meshes") != std::string::npos) fail(file, "the mesh has no triangles.");
+    fail(file, "cannot be read as a mesh (assimp: " + why + "); STL, OBJ and PLY are supported.");
   }
   TriMesh m = gather_and_weld(*scene);
   if (m.triangles.empty()) fail(file, "the mesh has no triangles.");

@@ -2,11 +2,22 @@
 
 #include <algorithm>
 #include <fcl/fcl.h>
+#include <fcl/math/detail/project.h>
 #include <limits>
 
 namespace kneesim::engine {
 
 using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
+
+TriangleProjection project_on_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       const Eigen::Vector3d& c, const Eigen::Vector3d& p) {
+  const auto r = fcl::detail::Projectd::projectTriangle(a, b, c, p);
+  TriangleProjection out;
+  out.squared_distance = r.sqr_distance;
+  for (int i = 0; i < 3; ++i) out.weight[i] = r.parameterization[i];
+  out.support = r.encode;
+  return out;
+}
 
 struct MeshBvh::Impl {
   std::shared_ptr<Bvh> model;
@@ -43,9 +54,10 @@ double MeshBvh::closest_point(const Eigen::Vector3d& p, Eigen::Vector3d& closest
   fcl::DistanceRequestd request(true);  // nearest points
   request.gjk_solver_type = fcl::GST_INDEP;
   fcl::DistanceResultd result;
-  fcl::distance(&point, &mesh, request, result);
-  closest = result.nearest_points[1];
-  triangle = static_cast<int>(result.b2);
+  // FCL orders mesh-shape pairs mesh first: b1 is the triangle, nearest_points[0] on it
+  fcl::distance(&mesh, &point, request, result);
+  closest = result.nearest_points[0];
+  triangle = static_cast<int>(result.b1);
   return std::max(0.0, result.min_distance + impl_->probe->radius);
 }
 

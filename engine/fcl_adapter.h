@@ -11,6 +11,17 @@
 
 namespace kneesim::engine {
 
+// closest point of triangle abc to p (FCL's simplex projection): squared distance [m^2],
+// barycentric weights of the closest point, and which vertices support it (bit i = vertex i:
+// 7 face interior, two bits an edge, one bit a vertex)
+struct TriangleProjection {
+  double squared_distance = 0.0;
+  double weight[3] = {0, 0, 0};
+  unsigned int support = 0;
+};
+TriangleProjection project_on_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                       const Eigen::Vector3d& c, const Eigen::Vector3d& p);
+
 class MeshBvh {
  public:
   MeshBvh(const std::vector<Eigen::Vector3d>& vertices,

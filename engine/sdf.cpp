@@ -1,6 +1,11 @@
 #include "engine/sdf.h"
 
 #include <algorithm>
+#include <bit>
+#include <limits>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -75,44 +80,20 @@ Pseudonormals make_pseudonormals(const std::vector<Eigen::Vector3d>& v,
   return n;
 }
 
-// sign of (p - q) against the pseudonormal of the feature of triangle f nearest to q
-double find_sign(const Pseudonormals& n, const std::vector<Eigen::Vector3d>& v,
-                 const Eigen::Vector3i& tri, int f, const Eigen::Vector3d& p,
-                 const Eigen::Vector3d& q) {
-  // barycentric coordinates of q in the triangle
-  const Eigen::Vector3d a = v[tri[0]], b = v[tri[1]], c = v[tri[2]];
-  const Eigen::Vector3d e0 = b - a, e1 = c - a, d = q - a;
-  const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1);
-  const double d20 = d.dot(e0), d21 = d.dot(e1);
-  const double den = d00 * d11 - d01 * d01;
-  double bb = 0, bc = 0;
-  if (den > 0) {
-    bb = (d11 * d20 - d01 * d21) / den;
-    bc = (d00 * d21 - d01 * d20) / den;
-  }
-  const double ba = 1.0 - bb - bc;
-  const double bary[3] = {ba, bb, bc};
-  constexpr double kTol = 1e-6;
-  int zeros = 0, nonzero_mask = 0;
-  for (int i = 0; i < 3; ++i) {
-    if (bary[i] < kTol) {
-      ++zeros;
-    } else {
-      nonzero_mask |= 1 << i;
-    }
-  }
+// sign of (p - q) against the pseudonormal of the feature of triangle f supporting q
+// (support bit i = vertex i of the triangle: 7 the face, two bits an edge, one bit a vertex)
+double find_sign(const Pseudonormals& n, unsigned int support, const Eigen::Vector3i& tri, int f,
+                 const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
   Eigen::Vector3d normal = n.face[f];
-  if (zeros == 2) {
-    const int i = nonzero_mask == 1 ? 0 : (nonzero_mask == 2 ? 1 : 2);
-    normal = n.vertex[tri[i]];
-  } else if (zeros == 1) {
+  const int bits = std::popcount(support & 7u);
+  if (bits == 1) {
+    normal = n.vertex[tri[std::countr_zero(support & 7u)]];
+  } else if (bits == 2) {
     int ends[2], k = 0;
-    for (int i = 0; i < 3; ++i) {
-      if (nonzero_mask & (1 << i)) ends[k++] = tri[i];
-    }
+    for (int i = 0; i < 3; ++i)
+      if (support & (1u << i)) ends[k++] = tri[i];
     const auto key = std::minmax(ends[0], ends[1]);
-    auto it = n.edge.find({key.first, key.second});
-    if (it != n.edge.end()) normal = it->second;
+    if (auto it = n.edge.find({key.first, key.second}); it != n.edge.end()) normal = it->second;
   }
   return (p - q).dot(normal) >= 0.0 ? 1.0 : -1.0;
 }
@@ -141,43 +122,66 @@ SignedDistanceField make_signed_distance_field(const std::vector<Eigen::Vector3d
   const long total = nx * ny * nz;
   auto index = [&](long i, long j, long k) { return i + nx * (j + ny * k); };
 
-  // mark the nodes within the band of some triangle's bounding box
-  std::vector<uint8_t> in_band(total, 0);
-  for (const auto& t : triangles) {
-    Eigen::Vector3d tlo = vertices[t[0]].cwiseMin(vertices[t[1]]).cwiseMin(vertices[t[2]]);
-    Eigen::Vector3d thi = vertices[t[0]].cwiseMax(vertices[t[1]]).cwiseMax(vertices[t[2]]);
-    tlo -= Eigen::Vector3d::Constant(band);
-    thi += Eigen::Vector3d::Constant(band);
-    const Eigen::Vector3d glo = (tlo - sdf.origin) / spacing, ghi = (thi - sdf.origin) / spacing;
-    const int i0 = std::max(0, static_cast<int>(std::floor(glo.x())));
-    const int j0 = std::max(0, static_cast<int>(std::floor(glo.y())));
-    const int k0 = std::max(0, static_cast<int>(std::floor(glo.z())));
-    const int i1 = std::min<int>(nx - 1, static_cast<int>(std::ceil(ghi.x())));
-    const int j1 = std::min<int>(ny - 1, static_cast<int>(std::ceil(ghi.y())));
-    const int k1 = std::min<int>(nz - 1, static_cast<int>(std::ceil(ghi.z())));
-    for (int k = k0; k <= k1; ++k)
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) in_band[index(i, j, k)] = 1;
+  // exact distances near the surface: every triangle visits the nodes of its bounding box
+  // grown by the band and keeps, per node, the nearest triangle (ties: lowest index). Threads
+  // own slabs of z, so each node sees the triangles in index order whatever the thread count.
+  std::vector<float> best(total, std::numeric_limits<float>::infinity());
+  std::vector<int> nearest(total, -1);
+  const int nt = static_cast<int>(triangles.size());
+#pragma omp parallel
+  {
+    int nthreads = 1, tid = 0;
+#ifdef _OPENMP
+    nthreads = omp_get_num_threads();
+    tid = omp_get_thread_num();
+#endif
+    const long z_lo = nz * tid / nthreads, z_hi = nz * (tid + 1) / nthreads;
+    for (int f = 0; f < nt; ++f) {
+      const auto& t = triangles[f];
+      const Eigen::Vector3d& a = vertices[t[0]];
+      const Eigen::Vector3d& b = vertices[t[1]];
+      const Eigen::Vector3d& c = vertices[t[2]];
+      const Eigen::Vector3d glo =
+          (a.cwiseMin(b).cwiseMin(c) - Eigen::Vector3d::Constant(band) - sdf.origin) / spacing;
+      const Eigen::Vector3d ghi =
+          (a.cwiseMax(b).cwiseMax(c) + Eigen::Vector3d::Constant(band) - sdf.origin) / spacing;
+      const long i0 = std::max(0L, static_cast<long>(std::ceil(glo.x())));
+      const long j0 = std::max(0L, static_cast<long>(std::ceil(glo.y())));
+      const long k0 = std::max(z_lo, static_cast<long>(std::ceil(glo.z())));
+      const long i1 = std::min(nx - 1, static_cast<long>(std::floor(ghi.x())));
+      const long j1 = std::min(ny - 1, static_cast<long>(std::floor(ghi.y())));
+      const long k1 = std::min(z_hi - 1, static_cast<long>(std::floor(ghi.z())));
+      for (long k = k0; k <= k1; ++k)
+        for (long j = j0; j <= j1; ++j)
+          for (long i = i0; i <= i1; ++i) {
+            const long n = index(i, j, k);
+            const Eigen::Vector3d p = sdf.origin + spacing * Eigen::Vector3d(i, j, k);
+            const double d2 = project_on_triangle(a, b, c, p).squared_distance;
+            if (d2 < best[n]) {
+              best[n] = static_cast<float>(d2);
+              nearest[n] = f;
+            }
+          }
+    }
   }
-  std::vector<long> band_nodes;
-  for (long n = 0; n < total; ++n)
-    if (in_band[n]) band_nodes.push_back(n);
-
-  // exact signed distance at band nodes
-  const MeshBvh bvh(vertices, triangles);
+  // signs from the pseudonormal of the nearest feature; nodes beyond the band wait for the fill
   const Pseudonormals normals = make_pseudonormals(vertices, triangles);
   sdf.phi.assign(total, static_cast<float>(band));
-  const long count = static_cast<long>(band_nodes.size());
-#pragma omp parallel for schedule(dynamic, 256)
-  for (long b = 0; b < count; ++b) {
-    const long n = band_nodes[b];
+  std::vector<uint8_t> in_band(total, 0);
+  const float band2 = static_cast<float>(band * band);
+#pragma omp parallel for schedule(static)
+  for (long n = 0; n < total; ++n) {
+    if (nearest[n] < 0 || best[n] > band2) continue;
+    in_band[n] = 1;
     const long i = n % nx, j = (n / nx) % ny, k = n / (nx * ny);
     const Eigen::Vector3d p = sdf.origin + spacing * Eigen::Vector3d(i, j, k);
-    Eigen::Vector3d q;
-    int f = 0;
-    const double dist = bvh.closest_point(p, q, f);
-    const double s = find_sign(normals, vertices, triangles[f], f, p, q);
-    sdf.phi[n] = static_cast<float>(s * std::min(dist, band));
+    const auto& t = triangles[nearest[n]];
+    const TriangleProjection proj =
+        project_on_triangle(vertices[t[0]], vertices[t[1]], vertices[t[2]], p);
+    const Eigen::Vector3d q = proj.weight[0] * vertices[t[0]] + proj.weight[1] * vertices[t[1]] +
+                              proj.weight[2] * vertices[t[2]];
+    const double s = find_sign(normals, proj.support, t, nearest[n], p, q);
+    sdf.phi[n] = static_cast<float>(s * std::sqrt(static_cast<double>(best[n])));
   }
 
   // flood fill the non-band nodes from the grid boundary: reached = outside, rest = inside

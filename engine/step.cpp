@@ -169,7 +169,9 @@ StepStatus step(const Model& model, State& state, Data& data) {
   ++state.step;
   // checks: NaN, runaway penetration
   if (!is_finite(state)) return StepStatus::kNotFinite;
-  if (data.contact.max_penetration_ratio > model.contact.runaway_fraction) {
+  // beyond 90 % of the distance field's exact band a deeper overlap could not be measured
+  if (data.contact.max_penetration_ratio > model.contact.runaway_fraction ||
+      data.contact.max_penetration > 0.9 * model.femur_sdf.band) {
     return StepStatus::kRunawayPenetration;
   }
   return StepStatus::kOk;

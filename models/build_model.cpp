@@ -1,0 +1,336 @@
+#include "models/build_model.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "engine/contact_law.h"
+#include "engine/errors.h"
+#include "engine/fcl_adapter.h"
+#include "engine/kinematics.h"
+#include "engine/step.h"
+#include "loads/iso14243/conventions.h"
+#include "loads/iso14243/kinematics.h"
+#include "models/mesh_io.h"
+
+namespace kneesim::models {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kMm = 1e-3;
+
+std::string config_name(const Config& c) {
+  return c.file.empty() ? std::string("built-in config") : c.file.string();
+}
+
+Eigen::Matrix3d rotation_xyz_deg(const std::array<double, 3>& deg) {
+  // extrinsic x, then y, then z
+  return (Eigen::AngleAxisd(deg[2] * kDeg, Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(deg[1] * kDeg, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(deg[0] * kDeg, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+Implant make_implant(const Config& c, double& base_y) {
+  Implant imp;
+  if (c.implant_kind == "generic") {
+    const GenericTkrParams p = generic_params(c);
+    check_generic_tkr(p);
+    imp.femur = make_generic_femur(p, c.edge_length_mm * kMm);
+    imp.insert = make_generic_insert(p, c.edge_length_mm * kMm);
+    base_y = 0.0;
+  } else {
+    MeshImportOptions o;
+    o.units = c.mesh_units;
+    o.rotation = rotation_xyz_deg(c.mesh_rotation_deg);
+    o.mirror_z = c.mesh_left_knee;
+    o.translation_m = -Eigen::Vector3d(c.femur_origin_mm[0], c.femur_origin_mm[1],
+                                       c.femur_origin_mm[2]) * kMm;
+    imp.femur = load_mesh(resolve_path(c, c.femur_mesh), o);
+    o.translation_m.setZero();
+    o.require_closed = c.insert_closed;
+    imp.insert = load_mesh(resolve_path(c, c.insert_mesh), o);
+    base_y = c.insert_base_y_mm * kMm;
+    // put the insert base plane at y = 0 of T
+    for (auto& v : imp.insert.vertices) v.y() -= base_y;
+    base_y = 0.0;
+  }
+  imp.insert_volume = c.insert_closed || c.implant_kind == "generic"
+                          ? enclosed_volume(imp.insert) : 0.0;
+  return imp;
+}
+
+// gait waveform with the sign conventions applied; in displacement mode with a measured
+// kinematics file, the measured channels are merged in (sampled every 0.25 %)
+loads::Waveform make_gait(const Config& c) {
+  loads::Waveform gait = loads::Waveform::load(resolve_path(c, c.gait_file));
+  loads::WaveformConventions conv;
+  conv.ap_sign = c.ap_sign;
+  conv.ie_sign = c.ie_sign;
+  gait = loads::apply_conventions(gait, conv);
+  if (c.kinematics_file.empty()) return gait;
+  const loads::Waveform measured =
+      loads::to_waveform(loads::read_kinematics(resolve_path(c, c.kinematics_file)));
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> columns;
+  std::vector<double> pct;
+  for (int i = 0; i <= 400; ++i) pct.push_back(0.25 * i);
+  pct.back() = 100.0;
+  auto add = [&](const loads::Waveform& w, int ch) {
+    names.push_back(w.channel_name(ch));
+    std::vector<double> col;
+    for (double p : pct) col.push_back(w.value(ch, p));
+    columns.push_back(col);
+  };
+  for (int ch = 0; ch < measured.channel_count(); ++ch) add(measured, ch);
+  for (int ch = 0; ch < gait.channel_count(); ++ch) {
+    if (measured.channel(gait.channel_name(ch)) < 0) add(gait, ch);
+  }
+  return loads::Waveform::from_table(names, pct, columns,
+                                     gait.source() + " + " + measured.source());
+}
+
+engine::DofMode parse_mode(const std::string& s) {
+  if (s == "free") return engine::DofMode::kFree;
+  if (s == "prescribed") return engine::DofMode::kPrescribed;
+  if (s == "force") return engine::DofMode::kForce;
+  return engine::DofMode::kLocked;
+}
+
+// channel and SI scale of a DOF's waveform by carriage, DOF and mode
+void map_channel(const Config& c, const loads::Waveform& gait, int carriage, int dof,
+                 engine::DofModel& m) {
+  using engine::DofMode;
+  struct Map {
+    int carriage, dof;
+    DofMode mode;
+    const char* channel;
+    double scale;
+  };
+  const Map maps[] = {
+      {0, 5, DofMode::kPrescribed, "flexion_deg", kDeg},
+      {0, 1, DofMode::kForce, "axial_force_N", -c.axial_force_scale},
+      {1, 0, DofMode::kForce, "ap_force_N", c.ap_force_scale},
+      {1, 4, DofMode::kForce, "ie_torque_Nm", c.ie_torque_scale},
+      {1, 0, DofMode::kPrescribed, "ap_mm", kMm},
+      {1, 4, DofMode::kPrescribed, "ie_deg", kDeg},
+      {1, 2, DofMode::kPrescribed, "ml_mm", kMm},
+      {1, 3, DofMode::kPrescribed, "vv_deg", kDeg},
+  };
+  for (const Map& mp : maps) {
+    if (mp.carriage != carriage || mp.dof != dof || mp.mode != m.mode) continue;
+    m.channel = gait.channel(mp.channel);
+    m.scale = mp.scale;
+    if (m.channel < 0) {
+      throw InputError(gait.source() + ": the rig drives " +
+                       std::string(carriage == 0 ? "femoral " : "tibial ") +
+                       engine::kDofNames[dof] + " from channel '" + mp.channel +
+                       "', which the waveform does not have (channels: " + [&] {
+                         std::string s;
+                         for (const auto& n : gait.channel_names()) s += " " + n;
+                         return s;
+                       }() + ")");
+    }
+    return;
+  }
+  if (m.mode == DofMode::kPrescribed) {
+    throw InputError(config_name(c) + ": rig." + (carriage == 0 ? "femur." : "tibia.") +
+                     engine::kDofNames[dof] + " = \"prescribed\" has no waveform channel; "
+                     "allowed: femur fe; tibia ap, ie, ml, vv");
+  }
+}
+
+std::vector<engine::RestraintSpring> make_restraint(const Config& c) {
+  std::vector<engine::RestraintSpring> out;
+  if (c.restraint == "none") return out;
+  if (c.restraint == "springs") {
+    // two AP springs per side at +-arm: each carries half of the side's stiffness
+    for (double z : {-c.spring_arm_mm * kMm, c.spring_arm_mm * kMm}) {
+      engine::RestraintSpring s;
+      s.kind = engine::RestraintKind::kTranslational;
+      s.z_arm = z;
+      s.gap = c.gap_mm * kMm;
+      s.k_inside = 0.5 * c.k_inside_N_per_mm / kMm;
+      s.k_positive = 0.5 * c.k_anterior_N_per_mm / kMm;
+      s.k_negative = 0.5 * c.k_posterior_N_per_mm / kMm;
+      out.push_back(s);
+    }
+  } else {  // linear AP spring-gap at the pivot
+    engine::RestraintSpring s;
+    s.kind = engine::RestraintKind::kTranslational;
+    s.gap = c.gap_mm * kMm;
+    s.k_inside = c.k_inside_N_per_mm / kMm;
+    s.k_positive = c.k_anterior_N_per_mm / kMm;
+    s.k_negative = c.k_posterior_N_per_mm / kMm;
+    out.push_back(s);
+  }
+  if (c.k_ie_Nm_per_deg > 0.0 || c.k_ie_inside_Nm_per_deg > 0.0) {
+    engine::RestraintSpring r;
+    r.kind = engine::RestraintKind::kRotational;
+    r.gap = c.ie_gap_deg * kDeg;
+    r.k_inside = c.k_ie_inside_Nm_per_deg / kDeg;
+    r.k_positive = r.k_negative = c.k_ie_Nm_per_deg / kDeg;
+    out.push_back(r);
+  }
+  return out;
+}
+
+}  // namespace
+
+GenericTkrParams generic_params(const Config& c) {
+  GenericTkrParams p;
+  p.femur_distal_radius_m = c.femur_distal_radius_mm * kMm;
+  p.femur_posterior_radius_m = c.femur_posterior_radius_mm * kMm;
+  p.femur_coronal_radius_m = c.femur_coronal_radius_mm * kMm;
+  p.condyle_width_m = c.condyle_width_mm * kMm;
+  p.condyle_spacing_m = c.condyle_spacing_mm * kMm;
+  p.insert_sagittal_radius_m = c.insert_sagittal_radius_mm * kMm;
+  p.insert_coronal_radius_m = c.insert_coronal_radius_mm * kMm;
+  p.insert_thickness_m = c.insert_thickness_mm * kMm;
+  p.insert_ap_depth_m = c.insert_ap_depth_mm * kMm;
+  p.insert_ml_width_m = c.insert_ml_width_mm * kMm;
+  p.insert_eminence_height_m = std::max(p.insert_eminence_height_m, p.insert_thickness_m + 4e-3);
+  return p;
+}
+
+engine::InsertSurface make_insert_surface(const TriMesh& insert, double base_y,
+                                          double min_normal_y, std::vector<int>* to_insert,
+                                          std::vector<int>* vertex_to_insert) {
+  const auto normals = face_normals(insert);
+  const auto areas = face_areas(insert);
+  const SubMesh sub = submesh(insert, [&](int f) {
+    const auto& t = insert.triangles[f];
+    const double cy =
+        (insert.vertices[t[0]].y() + insert.vertices[t[1]].y() + insert.vertices[t[2]].y()) / 3;
+    return normals[f].y() > min_normal_y && cy > base_y + 1e-4 && areas[f] > 0.0;
+  });
+  engine::InsertSurface s;
+  s.vertices_T = sub.mesh.vertices;
+  s.triangles = sub.mesh.triangles;
+  for (size_t i = 0; i < sub.mesh.triangles.size(); ++i) {
+    const int f = sub.triangle_to_parent[i];
+    const auto& t = insert.triangles[f];
+    const Eigen::Vector3d c =
+        (insert.vertices[t[0]] + insert.vertices[t[1]] + insert.vertices[t[2]]) / 3.0;
+    s.centroid_T.push_back(c);
+    s.normal_T.push_back(normals[f]);
+    s.area.push_back(areas[f]);
+    // layer thickness: the height above the base plane (the insert sits on a rigid tray)
+    s.thickness.push_back(std::max(c.y() - base_y, 1e-4));
+    s.medial.push_back(c.z() < 0.0 ? 1 : 0);
+  }
+  if (to_insert) *to_insert = sub.triangle_to_parent;
+  if (vertex_to_insert) *vertex_to_insert = sub.vertex_to_parent;
+  return s;
+}
+
+BuiltModel build_model(const Config& c) {
+  const auto start = std::chrono::steady_clock::now();
+  BuiltModel out;
+  engine::Model& m = out.model;
+  out.material = c.material;
+  const MaterialConfig& mat = c.material;
+
+  // implant geometry and the insert's articular elements
+  double base_y = 0.0;
+  out.implant = make_implant(c, base_y);
+  m.insert = make_insert_surface(out.implant.insert, base_y, c.articular_min_normal_y,
+                                 &out.implant.articular_to_insert,
+                                 &out.implant.articular_vertex_to_insert);
+  if (m.insert.size() == 0) {
+    throw InputError(config_name(c) + ": the insert has no articular faces (implant.mesh."
+                     "articular_min_normal_y = " + std::to_string(c.articular_min_normal_y) +
+                     "; allowed: below the largest face normal y)");
+  }
+
+  // femoral distance field, built once
+  const auto sdf_start = std::chrono::steady_clock::now();
+  m.femur_sdf = engine::make_signed_distance_field(out.implant.femur.vertices,
+                                                   out.implant.femur.triangles,
+                                                   c.sdf_spacing_mm * kMm, c.sdf_band_mm * kMm);
+  out.sdf_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - sdf_start).count();
+
+  // gait and rig
+  m.gait = make_gait(c);
+  m.period = c.period_s;
+  m.threads = c.threads;
+  m.integrator = c.integrator == "cvode" ? engine::IntegratorKind::kCvode
+                                         : engine::IntegratorKind::kCentralDifference;
+  const auto femur_box = bounding_box(out.implant.femur);
+  double insert_top = 0.0;
+  for (const auto& v : m.insert.vertices_T) insert_top = std::max(insert_top, v.y());
+  for (int carriage = 0; carriage < 2; ++carriage) {
+    engine::CarriageModel& cm = m.carriages[carriage];
+    const auto& modes = carriage == 0 ? c.femur_dofs : c.tibia_dofs;
+    const double mass = carriage == 0 ? c.femur_mass_kg : c.tibia_mass_kg;
+    const double inertia = carriage == 0 ? c.femur_inertia_kgm2 : c.tibia_inertia_kgm2;
+    const double damping[6] = {c.ap_damping_Ns_per_m,    c.is_damping_Ns_per_m,
+                               c.ml_damping_Ns_per_m,    c.vv_damping_Nms_per_rad,
+                               c.ie_damping_Nms_per_rad, c.ie_damping_Nms_per_rad};
+    for (int i = 0; i < engine::kNumDof; ++i) {
+      engine::DofModel& d = cm.dofs[i];
+      d.mode = parse_mode(modes[i]);
+      d.mass = engine::is_rotation(i) ? inertia : mass;
+      d.damping = damping[i];
+      map_channel(c, m.gait, carriage, i, d);
+    }
+  }
+  // femur: pivot on the FE axis (F origin), first placed just above the insert
+  m.carriages[0].pivot0_W = Eigen::Vector3d(0, insert_top - femur_box.min().y() + 1e-3, 0);
+  m.carriages[0].load_point_B = Eigen::Vector3d(0, 0, -c.axial_offset_mm * kMm);
+  // tibia: pivot offset medially; the insert frame T stays at the world origin
+  m.carriages[1].pivot0_W = Eigen::Vector3d(0, 0, -c.tibia_pivot_medial_mm * kMm);
+  m.carriages[1].X_BP.translation() = Eigen::Vector3d(0, 0, c.tibia_pivot_medial_mm * kMm);
+  m.restraint = make_restraint(c);
+
+  // contact
+  const double friction = c.friction_override >= 0.0 ? c.friction_override : mat.friction;
+  m.contact.law = c.contact_law == "linear" ? engine::ContactLaw::kLinear
+                                            : engine::ContactLaw::kNonlinear;
+  m.contact.foundation_modulus =
+      engine::foundation_modulus(mat.elastic_modulus_MPa * 1e6, mat.poisson);
+  m.contact.friction = friction;
+  m.contact.slip_regularization = c.friction_regularization_mm_per_s * kMm;
+  m.contact.margin = c.contact_margin_mm * kMm;
+  m.contact.runaway_fraction = c.runaway_fraction;
+
+  // stable step from the measured contact stiffness over the gait's flexion range
+  const int fe_ch = m.carriages[0].dofs[5].channel;
+  const int ax_ch = m.carriages[0].dofs[1].channel;
+  double fe_min = 0.0, fe_max = 0.0, peak_load = 0.0;
+  for (int i = 0; i <= 200; ++i) {
+    const double pct = 0.5 * i;
+    if (fe_ch >= 0) {
+      const double fe = m.gait.value(fe_ch, pct) * kDeg;
+      fe_min = std::min(fe_min, fe);
+      fe_max = std::max(fe_max, fe);
+    }
+    if (ax_ch >= 0) peak_load = std::max(peak_load, -m.carriages[0].dofs[1].scale *
+                                                        m.gait.value(ax_ch, pct));
+  }
+  std::vector<double> probes;
+  for (int i = 0; i < 5; ++i) probes.push_back(fe_min + (fe_max - fe_min) * i / 4.0);
+  out.stable_step = engine::calc_stable_time_step(m, std::max(peak_load, 100.0), probes,
+                                                  c.contact_damping_ratio, c.dt_safety);
+  m.contact.damping_beta = out.stable_step.damping_beta;
+  m.dt_critical = out.stable_step.dt_critical;
+  const long steps = static_cast<long>(std::ceil(m.period / out.stable_step.dt));
+  m.dt = m.period / steps;
+
+  // the femur starts at rest on the insert under the t = 0 axial load
+  {
+    engine::State s = engine::make_initial_state(m);
+    engine::Data d = engine::make_data(m);
+    const double load0 =
+        ax_ch >= 0 ? -m.carriages[0].dofs[1].scale * m.gait.value(ax_ch, 0.0) : 0.0;
+    engine::position_femur_statically(m, s, d, std::max(load0, 1.0));
+    m.carriages[0].dofs[1].initial = s.carriages[0].pivot_W.y() - m.carriages[0].pivot0_W.y();
+  }
+  out.build_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace kneesim::models

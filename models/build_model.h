@@ -1,0 +1,46 @@
+// Config -> engine::Model: the implant meshes (generic or imported), the insert's articular
+// elements with their layer thickness, the femoral distance field, the gait waveforms mapped
+// onto carriage DOFs, the rig preset, the restraint, and the stable time step (measured, see
+// engine/stable_step.h). Every conversion from I/O units to SI happens here.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/model.h"
+#include "engine/stable_step.h"
+#include "models/config.h"
+#include "models/generic_tkr.h"
+#include "models/tri_mesh.h"
+
+namespace kneesim::models {
+
+struct Implant {
+  TriMesh femur;                        // F frame [m]
+  TriMesh insert;                       // T frame [m], closed when required
+  std::vector<int> articular_to_insert; // insert triangle of each articular element
+  std::vector<int> articular_vertex_to_insert;  // insert vertex of each articular vertex
+  double insert_volume = 0.0;           // enclosed volume [m^3] (0 for an open mesh)
+};
+
+struct BuiltModel {
+  engine::Model model;
+  Implant implant;
+  engine::StableStepReport stable_step;
+  MaterialConfig material;
+  double build_seconds = 0.0;           // wall time of the build [s]
+  double sdf_seconds = 0.0;             // of which the distance field [s]
+  int culled_elements = 0;              // articular elements dropped by BVH culling
+};
+
+// builds everything; throws InputError for bad input (files named)
+BuiltModel build_model(const Config& config);
+
+// the insert's articular elements from a mesh in T: faces facing up more than min_normal_y
+engine::InsertSurface make_insert_surface(const TriMesh& insert, double base_y,
+                                          double min_normal_y, std::vector<int>* to_insert,
+                                          std::vector<int>* vertex_to_insert);
+
+GenericTkrParams generic_params(const Config& config);
+
+}  // namespace kneesim::models

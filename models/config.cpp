@@ -1,0 +1,472 @@
+// The TOML adapter (design.md: toml++ lives only here). Keys are registered once with their
+// type and range; the file and the --set overrides are flattened to dotted keys and assigned
+// through the registry, so every error names file, key, value and the allowed range.
+#include "models/config.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <sstream>
+#include <toml++/toml.h>
+#include <variant>
+
+#include "engine/errors.h"
+
+namespace kneesim::models {
+namespace {
+
+using Value = std::variant<double, std::string, bool, std::vector<double>>;
+
+struct Entry {
+  Value value;
+  std::string origin;  // file name or "--set"
+};
+
+std::string describe(const Value& v) {
+  if (auto d = std::get_if<double>(&v)) {
+    std::ostringstream s;
+    s << *d;
+    return s.str();
+  }
+  if (auto str = std::get_if<std::string>(&v)) return "\"" + *str + "\"";
+  if (auto b = std::get_if<bool>(&v)) return *b ? "true" : "false";
+  const auto& list = std::get<std::vector<double>>(v);
+  std::string out = "[";
+  for (size_t i = 0; i < list.size(); ++i) {
+    std::ostringstream s;
+    s << list[i];
+    out += (i ? ", " : "") + s.str();
+  }
+  return out + "]";
+}
+
+// flattens a TOML table into dotted keys; arrays of numbers become lists
+void flatten(const toml::table& table, const std::string& prefix, const std::string& origin,
+             std::map<std::string, Entry>& out) {
+  for (const auto& [k, node] : table) {
+    const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+    if (const auto* sub = node.as_table()) {
+      flatten(*sub, key, origin, out);
+    } else if (const auto* arr = node.as_array()) {
+      std::vector<double> list;
+      for (const auto& item : *arr) {
+        if (auto d = item.value<double>()) {
+          list.push_back(*d);
+        } else {
+          throw InputError(origin + ": key '" + key + "' must be a list of numbers");
+        }
+      }
+      out[key] = {list, origin};
+    } else if (auto b = node.value_exact<bool>()) {
+      out[key] = {*b, origin};
+    } else if (auto d = node.value<double>()) {
+      out[key] = {*d, origin};
+    } else if (auto s = node.value<std::string>()) {
+      out[key] = {*s, origin};
+    } else {
+      throw InputError(origin + ": key '" + key + "' has a value of an unsupported type");
+    }
+  }
+}
+
+// one registered key: how to assign it and what is allowed
+struct Field {
+  std::function<void(const Value&, const std::string& where)> assign;
+  std::string allowed;
+};
+
+[[noreturn]] void fail_value(const std::string& where, const std::string& key, const Value& v,
+                             const std::string& allowed) {
+  throw InputError(where + ": key '" + key + "' = " + describe(v) + " is not allowed (" +
+                   allowed + ")");
+}
+
+class Registry {
+ public:
+  void number(const std::string& key, double& target, double lo, double hi) {
+    std::ostringstream a;
+    a << "a number in [" << lo << ", " << hi << "]";
+    const std::string allowed = a.str();
+    fields_[key] = {[&target, key, lo, hi, allowed](const Value& v, const std::string& where) {
+                      const double* d = std::get_if<double>(&v);
+                      if (!d || !std::isfinite(*d) || *d < lo || *d > hi)
+                        fail_value(where, key, v, allowed);
+                      target = *d;
+                    },
+                    allowed};
+  }
+  void integer(const std::string& key, int& target, int lo, int hi) {
+    const std::string allowed =
+        "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+    fields_[key] = {[&target, key, lo, hi, allowed](const Value& v, const std::string& where) {
+                      const double* d = std::get_if<double>(&v);
+                      if (!d || *d != std::floor(*d) || *d < lo || *d > hi)
+                        fail_value(where, key, v, allowed);
+                      target = static_cast<int>(*d);
+                    },
+                    allowed};
+  }
+  void text(const std::string& key, std::string& target) {
+    fields_[key] = {[&target, key](const Value& v, const std::string& where) {
+                      const std::string* s = std::get_if<std::string>(&v);
+                      if (!s) fail_value(where, key, v, "a string");
+                      target = *s;
+                    },
+                    "a string"};
+  }
+  void choice(const std::string& key, std::string& target, std::vector<std::string> options) {
+    std::string allowed = "one of";
+    for (const auto& o : options) allowed += " \"" + o + "\"";
+    fields_[key] = {[&target, key, options, allowed](const Value& v, const std::string& where) {
+                      const std::string* s = std::get_if<std::string>(&v);
+                      if (!s || std::find(options.begin(), options.end(), *s) == options.end())
+                        fail_value(where, key, v, allowed);
+                      target = *s;
+                    },
+                    allowed};
+  }
+  void flag(const std::string& key, bool& target) {
+    fields_[key] = {[&target, key](const Value& v, const std::string& where) {
+                      const bool* b = std::get_if<bool>(&v);
+                      if (!b) fail_value(where, key, v, "true or false");
+                      target = *b;
+                    },
+                    "true or false"};
+  }
+  void vec3(const std::string& key, std::array<double, 3>& target) {
+    fields_[key] = {[&target, key](const Value& v, const std::string& where) {
+                      const auto* l = std::get_if<std::vector<double>>(&v);
+                      if (!l || l->size() != 3) fail_value(where, key, v, "a list of 3 numbers");
+                      for (int i = 0; i < 3; ++i) target[i] = (*l)[i];
+                    },
+                    "a list of 3 numbers"};
+  }
+  void list(const std::string& key, std::vector<double>& target, double lo, double hi) {
+    std::ostringstream a;
+    a << "a list of numbers in [" << lo << ", " << hi << "]";
+    const std::string allowed = a.str();
+    fields_[key] = {[&target, key, lo, hi, allowed](const Value& v, const std::string& where) {
+                      const auto* l = std::get_if<std::vector<double>>(&v);
+                      if (!l) fail_value(where, key, v, allowed);
+                      for (double x : *l)
+                        if (!std::isfinite(x) || x < lo || x > hi) fail_value(where, key, v, allowed);
+                      target = *l;
+                    },
+                    allowed};
+  }
+  const Field* find(const std::string& key) const {
+    auto it = fields_.find(key);
+    return it == fields_.end() ? nullptr : &it->second;
+  }
+  std::string keys_in_section(const std::string& key) const {
+    const std::string section = key.substr(0, key.rfind('.') + 1);
+    std::string out;
+    for (const auto& [k, f] : fields_) {
+      if (k.rfind(section, 0) == 0 && k.find('.', section.size()) == std::string::npos)
+        out += (out.empty() ? "" : ", ") + k;
+    }
+    return out;
+  }
+
+ private:
+  std::map<std::string, Field> fields_;
+};
+
+const std::vector<std::string> kDofModes = {"locked", "free", "prescribed", "force"};
+const std::vector<std::string> kDofKeys = {"ap", "is", "ml", "vv", "ie", "fe"};
+
+void register_material(Registry& r, const std::string& prefix, MaterialConfig& m) {
+  r.number(prefix + "elastic_modulus_MPa", m.elastic_modulus_MPa, 1.0, 1e6);
+  r.number(prefix + "poisson", m.poisson, 0.0, 0.49);
+  r.number(prefix + "yield_MPa", m.yield_MPa, 0.0, 1e4);
+  r.number(prefix + "density_g_per_cm3", m.density_g_per_cm3, 0.1, 30.0);
+  r.number(prefix + "friction", m.friction, 0.0, 1.0);
+  r.number(prefix + "wear_factor_mm3_per_Nmm", m.wear_factor_mm3_per_Nmm, 0.0, 1e-3);
+  r.text(prefix + "source", m.source);
+}
+
+Registry make_registry(Config& c) {
+  Registry r;
+  r.choice("implant.kind", c.implant_kind, {"generic", "mesh"});
+  r.number("implant.edge_length_mm", c.edge_length_mm, 0.2, 5.0);
+  r.number("implant.generic.femur_distal_radius_mm", c.femur_distal_radius_mm, 15, 80);
+  r.number("implant.generic.femur_posterior_radius_mm", c.femur_posterior_radius_mm, 10, 60);
+  r.number("implant.generic.femur_coronal_radius_mm", c.femur_coronal_radius_mm, 5, 1000);
+  r.number("implant.generic.condyle_width_mm", c.condyle_width_mm, 8, 40);
+  r.number("implant.generic.condyle_spacing_mm", c.condyle_spacing_mm, 20, 70);
+  r.number("implant.generic.insert_sagittal_radius_mm", c.insert_sagittal_radius_mm, 20, 1000);
+  r.number("implant.generic.insert_coronal_radius_mm", c.insert_coronal_radius_mm, 5, 1000);
+  r.number("implant.generic.insert_thickness_mm", c.insert_thickness_mm, 4, 30);
+  r.number("implant.generic.insert_ap_depth_mm", c.insert_ap_depth_mm, 25, 80);
+  r.number("implant.generic.insert_ml_width_mm", c.insert_ml_width_mm, 40, 100);
+  r.text("implant.mesh.femur", c.femur_mesh);
+  r.text("implant.mesh.insert", c.insert_mesh);
+  r.choice("implant.mesh.units", c.mesh_units, {"m", "mm"});
+  r.vec3("implant.mesh.rotation_deg", c.mesh_rotation_deg);
+  r.flag("implant.mesh.left_knee", c.mesh_left_knee);
+  r.vec3("implant.mesh.femur_origin_mm", c.femur_origin_mm);
+  r.number("implant.mesh.insert_base_y_mm", c.insert_base_y_mm, -100, 100);
+  r.number("implant.mesh.articular_min_normal_y", c.articular_min_normal_y, -1, 1);
+  r.flag("implant.mesh.insert_closed", c.insert_closed);
+
+  r.text("material.name", c.material.name);
+  register_material(r, "material.", c.material);
+
+  r.choice("contact.law", c.contact_law, {"linear", "nonlinear"});
+  r.number("contact.damping_ratio", c.contact_damping_ratio, 0.0, 1.0);
+  r.number("contact.sdf_spacing_mm", c.sdf_spacing_mm, 0.05, 2.0);
+  r.number("contact.sdf_band_mm", c.sdf_band_mm, 0.5, 10.0);
+  r.number("contact.margin_mm", c.contact_margin_mm, 0.05, 5.0);
+  r.number("contact.friction_regularization_mm_per_s", c.friction_regularization_mm_per_s, 1e-4,
+           100.0);
+  r.number("contact.runaway_fraction", c.runaway_fraction, 0.01, 0.95);
+  r.number("contact.friction", c.friction_override, 0.0, 1.0);
+
+  r.choice("rig.preset", c.rig_preset, {"stanmore", "materials_study", "displacement", "iso"});
+  for (int i = 0; i < 6; ++i) {
+    r.choice("rig.femur." + kDofKeys[i], c.femur_dofs[i], kDofModes);
+    r.choice("rig.tibia." + kDofKeys[i], c.tibia_dofs[i], kDofModes);
+  }
+  r.number("rig.axial_offset_mm", c.axial_offset_mm, -30, 30);
+  r.number("rig.tibia_pivot_medial_mm", c.tibia_pivot_medial_mm, -30, 30);
+  r.number("rig.femur_mass_kg", c.femur_mass_kg, 0.01, 1000);
+  r.number("rig.tibia_mass_kg", c.tibia_mass_kg, 0.01, 1000);
+  r.number("rig.femur_inertia_kgm2", c.femur_inertia_kgm2, 1e-6, 100);
+  r.number("rig.tibia_inertia_kgm2", c.tibia_inertia_kgm2, 1e-6, 100);
+  r.number("rig.ap_damping_Ns_per_m", c.ap_damping_Ns_per_m, 0, 1e5);
+  r.number("rig.ml_damping_Ns_per_m", c.ml_damping_Ns_per_m, 0, 1e5);
+  r.number("rig.is_damping_Ns_per_m", c.is_damping_Ns_per_m, 0, 1e5);
+  r.number("rig.ie_damping_Nms_per_rad", c.ie_damping_Nms_per_rad, 0, 1e3);
+  r.number("rig.vv_damping_Nms_per_rad", c.vv_damping_Nms_per_rad, 0, 1e3);
+  r.choice("rig.restraint.kind", c.restraint, {"springs", "linear", "none"});
+  r.number("rig.restraint.gap_mm", c.gap_mm, 0, 20);
+  r.number("rig.restraint.k_anterior_N_per_mm", c.k_anterior_N_per_mm, 0, 1e4);
+  r.number("rig.restraint.k_posterior_N_per_mm", c.k_posterior_N_per_mm, 0, 1e4);
+  r.number("rig.restraint.k_inside_N_per_mm", c.k_inside_N_per_mm, 0, 1e4);
+  r.number("rig.restraint.spring_arm_mm", c.spring_arm_mm, 0, 200);
+  r.number("rig.restraint.ie_gap_deg", c.ie_gap_deg, 0, 45);
+  r.number("rig.restraint.k_ie_inside_Nm_per_deg", c.k_ie_inside_Nm_per_deg, 0, 100);
+  r.number("rig.restraint.k_ie_Nm_per_deg", c.k_ie_Nm_per_deg, 0, 100);
+
+  r.text("gait.file", c.gait_file);
+  r.text("gait.kinematics_file", c.kinematics_file);
+  r.number("gait.period_s", c.period_s, 0.1, 100);
+  r.number("gait.ap_sign", c.ap_sign, -1, 1);
+  r.number("gait.ie_sign", c.ie_sign, -1, 1);
+  r.number("gait.axial_force_scale", c.axial_force_scale, 0, 10);
+  r.number("gait.ap_force_scale", c.ap_force_scale, 0, 10);
+  r.number("gait.ie_torque_scale", c.ie_torque_scale, 0, 10);
+
+  r.choice("solver.integrator", c.integrator, {"central_difference", "cvode"});
+  r.number("solver.dt_safety", c.dt_safety, 0.05, 1.0);
+  r.integer("solver.threads", c.threads, 1, 256);
+  r.integer("solver.cycles", c.cycles, 1, 1000000);
+
+  r.list("output.map_pcts", c.map_pcts, 0, 100);
+  r.text("output.measured_kinematics", c.measured_kinematics);
+  return r;
+}
+
+void apply_rig_preset(Config& c) {
+  using A = std::array<std::string, 6>;  // ap, is, ml, vv, ie, fe
+  if (c.rig_preset == "stanmore" || c.rig_preset == "iso") {
+    c.femur_dofs = A{"locked", "force", "locked", "locked", "locked", "prescribed"};
+    c.tibia_dofs = A{"force", "locked", "free", "free", "force", "locked"};
+    c.axial_offset_mm = 5.0;
+    c.tibia_pivot_medial_mm = 5.0;
+  } else if (c.rig_preset == "materials_study") {
+    c.femur_dofs = A{"free", "force", "free", "free", "locked", "prescribed"};
+    c.tibia_dofs = A{"force", "locked", "free", "free", "force", "locked"};
+    c.axial_offset_mm = 5.0;
+    c.tibia_pivot_medial_mm = 0.0;
+  } else {  // displacement
+    c.femur_dofs = A{"locked", "force", "locked", "locked", "locked", "prescribed"};
+    c.tibia_dofs = A{"prescribed", "locked", "free", "free", "prescribed", "locked"};
+    c.axial_offset_mm = 5.0;
+    c.tibia_pivot_medial_mm = 5.0;
+  }
+  if (c.rig_preset == "stanmore") {  // Pal 2008
+    c.restraint = "springs";
+    c.gap_mm = 3.0;
+    c.k_anterior_N_per_mm = 4.75;
+    c.k_posterior_N_per_mm = 22.18;
+    c.k_inside_N_per_mm = 0.0;
+    c.ie_gap_deg = 0.0;
+    c.k_ie_inside_Nm_per_deg = c.k_ie_Nm_per_deg = 0.0;
+  } else if (c.rig_preset == "materials_study") {
+    c.restraint = "linear";
+    c.gap_mm = 0.0;
+    c.k_anterior_N_per_mm = c.k_posterior_N_per_mm = 10.4;
+    c.k_inside_N_per_mm = 0.0;
+    c.ie_gap_deg = 0.0;
+    c.k_ie_inside_Nm_per_deg = 0.0;
+    c.k_ie_Nm_per_deg = 0.30;
+  } else if (c.rig_preset == "iso") {  // ISO 14243-1:2009-like, approx.
+    c.restraint = "linear";
+    c.gap_mm = 2.5;
+    c.k_inside_N_per_mm = 9.3;
+    c.k_anterior_N_per_mm = c.k_posterior_N_per_mm = 44.0;
+    c.ie_gap_deg = 6.0;
+    c.k_ie_inside_Nm_per_deg = 0.13;
+    c.k_ie_Nm_per_deg = 0.36;
+  } else {
+    c.restraint = "none";
+  }
+}
+
+std::string materials_library_path() {
+  return std::string(KNEESIM_SOURCE_DIR) + "/models/materials.toml";
+}
+
+std::map<std::string, MaterialConfig> read_material_tables(const toml::table& root,
+                                                           const std::string& origin,
+                                                           const std::string& section) {
+  std::map<std::string, MaterialConfig> out;
+  const toml::table* mats = section.empty() ? &root : root[section].as_table();
+  if (!mats) return out;
+  for (const auto& [name, node] : *mats) {
+    const toml::table* t = node.as_table();
+    if (!t) throw InputError(origin + ": '" + std::string(name.str()) + "' must be a table");
+    MaterialConfig m;
+    m.name = std::string(name.str());
+    Registry r;
+    register_material(r, "", m);
+    std::map<std::string, Entry> flat;
+    flatten(*t, "", origin, flat);
+    for (const auto& [k, e] : flat) {
+      const Field* f = r.find(k);
+      const std::string full = (section.empty() ? "" : section + ".") + m.name + "." + k;
+      if (!f) {
+        throw InputError(origin + ": unknown key '" + full + "' (allowed: elastic_modulus_MPa, "
+                         "poisson, yield_MPa, density_g_per_cm3, friction, "
+                         "wear_factor_mm3_per_Nmm, source)");
+      }
+      f->assign(e.value, origin + " [" + full + "]");
+    }
+    out[m.name] = m;
+  }
+  return out;
+}
+
+const std::map<std::string, MaterialConfig>& library() {
+  static const std::map<std::string, MaterialConfig> lib = [] {
+    const std::string path = materials_library_path();
+    toml::table root;
+    try {
+      root = toml::parse_file(path);
+    } catch (const toml::parse_error& e) {
+      throw InputError(path + ": " + std::string(e.description()));
+    }
+    return read_material_tables(root, path, "");
+  }();
+  return lib;
+}
+
+}  // namespace
+
+std::vector<std::string> library_material_names() {
+  std::vector<std::string> names;
+  for (const auto& [k, v] : library()) names.push_back(k);
+  return names;
+}
+
+MaterialConfig find_material(const Config& config, const std::string& name) {
+  if (auto it = config.user_materials.find(name); it != config.user_materials.end())
+    return it->second;
+  if (auto it = library().find(name); it != library().end()) return it->second;
+  std::string known;
+  for (const auto& n : library_material_names()) known += " " + n;
+  for (const auto& [n, m] : config.user_materials) known += " " + n;
+  throw InputError((config.file.empty() ? std::string("material") : config.file.string()) +
+                   ": unknown material '" + name + "' (known:" + known + ")");
+}
+
+Override parse_override(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 >= text.size()) {
+    throw InputError("--set '" + text + "' is not of the form key=value");
+  }
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+std::filesystem::path resolve_path(const Config& config, const std::string& path) {
+  std::string p = path;
+  auto expand = [&p](const std::string& var, const std::string& fallback) {
+    const std::string token = "${" + var + "}";
+    for (auto pos = p.find(token); pos != std::string::npos; pos = p.find(token)) {
+      const char* env = std::getenv(var.c_str());
+      p.replace(pos, token.size(), env ? env : fallback);
+    }
+  };
+  expand("KNEESIM_DATA", std::string(KNEESIM_SOURCE_DIR) + "/../shared/data");
+  expand("KNEESIM_SOURCE", KNEESIM_SOURCE_DIR);
+  std::filesystem::path out(p);
+  if (out.is_relative() && !config.file.empty()) out = config.file.parent_path() / out;
+  return out;
+}
+
+Config load_config(const std::filesystem::path& file, const std::vector<Override>& overrides) {
+  Config c;
+  c.file = file;
+  std::map<std::string, Entry> flat;
+  toml::table root;
+  if (!file.empty()) {
+    if (!std::filesystem::exists(file)) {
+      throw InputError(file.string() + ": config file not found");
+    }
+    try {
+      root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+      throw InputError(file.string() + ":" + std::to_string(e.source().begin.line) + ": " +
+                       std::string(e.description()));
+    }
+    // user materials are tables of their own, read before the flat keys
+    c.user_materials = read_material_tables(root, file.string(), "materials");
+    root.erase("materials");
+    flatten(root, "", file.string(), flat);
+  }
+  for (const Override& o : overrides) {
+    toml::table t;
+    try {
+      t = toml::parse("v = " + o.value);
+    } catch (const toml::parse_error&) {
+      t = toml::table{{"v", o.value}};  // a bare word is a string
+    }
+    std::map<std::string, Entry> one;
+    flatten(t, "", "--set " + o.key, one);
+    flat[o.key] = {one.begin()->second.value, "--set " + o.key + "=" + o.value};
+  }
+  Registry registry = make_registry(c);
+  // pass 1: the preset and the material name set the defaults the other keys refine
+  if (auto it = flat.find("rig.preset"); it != flat.end()) {
+    registry.find("rig.preset")->assign(it->second.value, it->second.origin);
+  }
+  apply_rig_preset(c);
+  if (auto it = flat.find("material.name"); it != flat.end()) {
+    registry.find("material.name")->assign(it->second.value, it->second.origin);
+  }
+  c.material = find_material(c, c.material.name);
+  // pass 2: every key, in order
+  for (const auto& [key, entry] : flat) {
+    const Field* f = registry.find(key);
+    if (!f) {
+      const std::string section = registry.keys_in_section(key);
+      throw InputError(entry.origin + ": unknown config key '" + key + "'" +
+                       (section.empty() ? "" : " (keys in its section: " + section + ")"));
+    }
+    f->assign(entry.value, entry.origin);
+  }
+  if (c.gait_file.empty()) {
+    c.gait_file = c.rig_preset == "displacement"
+                      ? "${KNEESIM_SOURCE}/loads/iso14243/iso14243_3_approx.csv"
+                      : "${KNEESIM_SOURCE}/loads/iso14243/iso14243_1_approx.csv";
+  }
+  if (c.implant_kind == "mesh" && (c.femur_mesh.empty() || c.insert_mesh.empty())) {
+    throw InputError((file.empty() ? std::string("config") : file.string()) +
+                     ": implant.kind = \"mesh\" needs both implant.mesh.femur and "
+                     "implant.mesh.insert");
+  }
+  return c;
+}
+
+}  // namespace kneesim::models

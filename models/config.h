@@ -1,0 +1,119 @@
+// The run configuration as the user writes it (TOML, units in the key names), every field
+// defaulted so `kneesim run` needs no file. models/build_model converts it to an SI Model.
+//
+// Loading order: defaults -> rig preset (rig.preset, from the file or --set) -> every key of
+// the file -> every --set override. Each key is registered once in config.cpp with its type
+// and allowed range, so unknown keys and out-of-range values are rejected with one sentence
+// naming the file, key, value and range.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace kneesim::models {
+
+struct MaterialConfig {
+  std::string name = "uhmwpe";               // library name or a [materials.<name>] table
+  double elastic_modulus_MPa = 685.0;        // Young's modulus [MPa]
+  double poisson = 0.47;                     // [-]
+  double yield_MPa = 17.0;                   // [MPa]
+  double density_g_per_cm3 = 0.935;          // [g/cm^3]
+  double friction = 0.07;                    // Coulomb coefficient against CoCr [-]
+  double wear_factor_mm3_per_Nmm = 2.643e-10;  // Archard k [mm^3/(N mm)]
+  std::string source;                        // where the values come from
+};
+
+struct Config {
+  std::filesystem::path file;  // the config file ("" for built-in defaults)
+
+  // [implant]
+  std::string implant_kind = "generic";  // "generic" | "mesh"
+  double edge_length_mm = 1.0;           // insert surface resolution [mm]
+  // [implant.generic]
+  double femur_distal_radius_mm = 38.0, femur_posterior_radius_mm = 22.0;
+  double femur_coronal_radius_mm = 20.0, condyle_width_mm = 20.0, condyle_spacing_mm = 44.0;
+  double insert_sagittal_radius_mm = 70.0, insert_coronal_radius_mm = 25.0;
+  double insert_thickness_mm = 8.0, insert_ap_depth_mm = 46.0, insert_ml_width_mm = 72.0;
+  // [implant.mesh]
+  std::string femur_mesh, insert_mesh;   // paths, ${KNEESIM_DATA} expanded
+  std::string mesh_units = "m";          // "m" | "mm"
+  std::array<double, 3> mesh_rotation_deg{0, 0, 0};  // XYZ rotation into the project frame
+  bool mesh_left_knee = false;           // mirror z after rotation
+  std::array<double, 3> femur_origin_mm{0, 0, 0};  // FE axis centre, mesh frame (after rotation)
+  double insert_base_y_mm = 0.0;         // insert base plane height, project frame
+  double articular_min_normal_y = 0.35;  // insert faces steeper than this are not articular
+  bool insert_closed = true;             // require a closed insert mesh
+
+  // [material]
+  MaterialConfig material;
+  std::map<std::string, MaterialConfig> user_materials;  // [materials.<name>]
+
+  // [contact]
+  std::string contact_law = "nonlinear";   // "linear" | "nonlinear"
+  double contact_damping_ratio = 0.3;      // of the stiffest contact mode [-]
+  double sdf_spacing_mm = 0.4;             // femoral distance-field node spacing [mm]
+  double sdf_band_mm = 1.5;                // exact band of the field [mm]
+  double contact_margin_mm = 1.0;          // candidate-list skin [mm]
+  double friction_regularization_mm_per_s = 1.0;  // eps of the Coulomb law [mm/s]
+  double runaway_fraction = 0.5;           // max penetration / layer thickness [-]
+  double friction_override = -1.0;         // >= 0 replaces the material's friction [-]
+
+  // [rig]
+  std::string rig_preset = "stanmore";     // "stanmore" | "materials_study" | "displacement" | "iso"
+  std::array<std::string, 6> femur_dofs;   // mode per DOF ap,is,ml,vv,ie,fe (preset)
+  std::array<std::string, 6> tibia_dofs;
+  double axial_offset_mm = 5.0;            // medial offset of the axial load line [mm]
+  double tibia_pivot_medial_mm = 5.0;      // medial offset of the tibial VV (and IE) axis [mm]
+  double femur_mass_kg = 4.0, tibia_mass_kg = 2.0;
+  double femur_inertia_kgm2 = 0.004, tibia_inertia_kgm2 = 0.004;  // rotational [kg m^2]
+  double ap_damping_Ns_per_m = 100.0, ml_damping_Ns_per_m = 100.0, is_damping_Ns_per_m = 0.0;
+  double ie_damping_Nms_per_rad = 0.3, vv_damping_Nms_per_rad = 0.3;
+  // restraint (spring-gap, physics.md section 2); preset-dependent defaults
+  std::string restraint = "springs";       // "springs" (four AP springs) | "linear" | "none"
+  double gap_mm = 3.0;
+  double k_anterior_N_per_mm = 4.75, k_posterior_N_per_mm = 22.18;
+  double k_inside_N_per_mm = 0.0;
+  double spring_arm_mm = 35.0;             // lever arm of the AP springs from the IE axis [mm]
+  double ie_gap_deg = 0.0;
+  double k_ie_inside_Nm_per_deg = 0.0, k_ie_Nm_per_deg = 0.0;  // rotational restraint
+
+  // [gait]
+  std::string gait_file;                   // waveform file ("" = shipped ISO 14243-1 approx.)
+  std::string kinematics_file;             // measured kinematics for displacement mode
+  double period_s = 1.0;
+  double ap_sign = 1.0, ie_sign = 1.0;     // sign conventions of the file's AP and IE channels
+  double axial_force_scale = 1.0, ap_force_scale = 1.0, ie_torque_scale = 1.0;
+
+  // [solver]
+  std::string integrator = "central_difference";  // "central_difference" | "cvode"
+  double dt_safety = 0.8;                  // fraction of the estimated stability limit [-]
+  int threads = 1;                         // OpenMP threads for contact evaluation
+  int cycles = 2;                          // gait cycles; outputs come from the last
+
+  // [output]
+  std::vector<double> map_pcts{0, 13, 24, 45, 60, 80};  // gait % of the pressure maps
+  std::string measured_kinematics;        // optional overlay for the kinematics plot
+};
+
+// `key=value` from the command line (value in TOML syntax; bare words are strings)
+struct Override {
+  std::string key, value;
+};
+
+// loads a config file ("" for pure defaults) and applies overrides; throws InputError
+Config load_config(const std::filesystem::path& file, const std::vector<Override>& overrides);
+
+// parses "key=value" into an Override; throws InputError naming the text
+Override parse_override(const std::string& text);
+
+// ${KNEESIM_DATA} and ${KNEESIM_SOURCE} expansion, relative paths resolved against the config
+std::filesystem::path resolve_path(const Config& config, const std::string& path);
+
+// the materials library shipped in models/materials.toml plus the config's own materials
+MaterialConfig find_material(const Config& config, const std::string& name);
+std::vector<std::string> library_material_names();
+
+}  // namespace kneesim::models

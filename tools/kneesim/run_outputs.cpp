@@ -1,0 +1,149 @@
+#include "tools/kneesim/run_outputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "tools/io/vtp.h"
+
+namespace kneesim::cli {
+namespace {
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+}
+
+io::Table make_kinematics_table(const std::vector<engine::Frame>& frames) {
+  io::Table t;
+  t.columns = {"gait_pct",          "time_s",           "flexion_deg",
+               "ap_mm",             "ie_deg",           "ml_mm",
+               "vv_deg",            "femur_is_mm",      "axial_force_N",
+               "ap_force_N",        "ie_torque_Nm",     "contact_force_N",
+               "contact_axial_force_N", "medial_force_N", "lateral_force_N",
+               "contact_area_mm2",  "medial_area_mm2",  "lateral_area_mm2",
+               "peak_pressure_MPa", "mean_pressure_MPa", "medial_cop_ap_mm",
+               "medial_cop_ml_mm",  "lateral_cop_ap_mm", "lateral_cop_ml_mm",
+               "restraint_force_N", "restraint_torque_Nm", "max_penetration_mm"};
+  for (const engine::Frame& f : frames) {
+    const auto& c = f.contact;
+    t.add_row({f.gait_pct,
+               f.time,
+               f.q[0][5] * kRadToDeg,
+               f.q[1][0] * 1e3,
+               f.q[1][4] * kRadToDeg,
+               f.q[1][2] * 1e3,
+               f.q[1][3] * kRadToDeg,
+               f.q[0][1] * 1e3,
+               -f.applied[0][1],
+               f.applied[1][0],
+               f.applied[1][4],
+               c.force_W.norm(),
+               c.force_W.y(),
+               c.normal_force[0],
+               c.normal_force[1],
+               (c.area[0] + c.area[1]) * 1e6,
+               c.area[0] * 1e6,
+               c.area[1] * 1e6,
+               c.peak_pressure * 1e-6,
+               c.mean_pressure * 1e-6,
+               c.cop_T[0].x() * 1e3,
+               c.cop_T[0].z() * 1e3,
+               c.cop_T[1].x() * 1e3,
+               c.cop_T[1].z() * 1e3,
+               f.restraint.x(),
+               f.restraint.y(),
+               c.max_penetration * 1e3});
+  }
+  return t;
+}
+
+CycleFigures calc_cycle_figures(const std::vector<engine::Frame>& frames) {
+  CycleFigures fig;
+  if (frames.empty()) return fig;
+  double ap_lo = 1e9, ap_hi = -1e9, ie_lo = 1e9, ie_hi = -1e9;
+  double peak_sum = 0.0, area_sum = 0.0, med = 0.0, lat = 0.0;
+  int in_contact = 0;
+  for (const engine::Frame& f : frames) {
+    const double ap = f.q[1][0] * 1e3, ie = f.q[1][4] * kRadToDeg;
+    ap_lo = std::min(ap_lo, ap);
+    ap_hi = std::max(ap_hi, ap);
+    ie_lo = std::min(ie_lo, ie);
+    ie_hi = std::max(ie_hi, ie);
+    const double p = f.contact.peak_pressure * 1e-6;
+    fig.peak_pressure_MPa = std::max(fig.peak_pressure_MPa, p);
+    fig.peak_contact_force_N = std::max(fig.peak_contact_force_N, f.contact.force_W.norm());
+    if (f.contact.elements_in_contact > 0) {
+      peak_sum += p;
+      area_sum += (f.contact.area[0] + f.contact.area[1]) * 1e6;
+      ++in_contact;
+    }
+    const double load = -f.applied[0][1];
+    if (load > fig.peak_axial_load_N) {
+      fig.peak_axial_load_N = load;
+      fig.contact_force_at_peak_load_N = f.contact.force_W.y();
+    }
+    if (f.gait_pct <= 60.0) {
+      med += f.contact.normal_force[0];
+      lat += f.contact.normal_force[1];
+    }
+  }
+  fig.ap_rom_mm = ap_hi - ap_lo;
+  fig.ie_rom_mm = ie_hi - ie_lo;
+  fig.mean_peak_pressure_MPa = in_contact ? peak_sum / in_contact : 0.0;
+  fig.mean_contact_area_mm2 = in_contact ? area_sum / in_contact : 0.0;
+  fig.medial_fraction_stance = med + lat > 0 ? med / (med + lat) : 0.0;
+  return fig;
+}
+
+nlohmann::json describe_model(const models::BuiltModel& built, const models::Config& config) {
+  const engine::Model& m = built.model;
+  nlohmann::json j;
+  j["implant"] = config.implant_kind;
+  j["rig_preset"] = config.rig_preset;
+  j["material"] = built.material.name;
+  j["contact_law"] = config.contact_law;
+  j["friction"] = m.contact.friction;
+  j["integrator"] = config.integrator;
+  j["gait_file"] = m.gait.source();
+  j["articular_elements"] = m.insert.size();
+  j["dt_s"] = m.dt;
+  j["dt_critical_s"] = m.dt_critical;
+  j["steps_per_cycle"] = std::lround(m.period / m.dt);
+  j["contact_damping_ratio"] = config.contact_damping_ratio;
+  j["stable_step_governing_dof"] =
+      std::string(built.stable_step.governing_carriage == 0 ? "femur_" : "tibia_") +
+      engine::kDofNames[built.stable_step.governing_dof];
+  j["femur_mass_kg"] = config.femur_mass_kg;
+  j["tibia_mass_kg"] = config.tibia_mass_kg;
+  j["build_seconds"] = built.build_seconds;
+  j["sdf_seconds"] = built.sdf_seconds;
+  return j;
+}
+
+nlohmann::json describe_figures(const CycleFigures& f) {
+  nlohmann::json j;
+  j["ap_rom_mm"] = f.ap_rom_mm;
+  j["ie_rom_mm"] = f.ie_rom_mm;
+  j["peak_pressure_MPa"] = f.peak_pressure_MPa;
+  j["mean_peak_pressure_MPa"] = f.mean_peak_pressure_MPa;
+  j["peak_contact_force_N"] = f.peak_contact_force_N;
+  j["peak_axial_load_N"] = f.peak_axial_load_N;
+  j["contact_axial_force_at_peak_load_N"] = f.contact_force_at_peak_load_N;
+  j["medial_fraction_stance"] = f.medial_fraction_stance;
+  j["mean_contact_area_mm2"] = f.mean_contact_area_mm2;
+  return j;
+}
+
+void write_pressure_map(const std::filesystem::path& path, const engine::InsertSurface& insert,
+                        const std::vector<double>& pressure_Pa) {
+  io::VtpSurface s;
+  for (const auto& v : insert.vertices_T) s.points_mm.push_back(v * 1e3);
+  s.triangles = insert.triangles;
+  io::VtpArray p{"pressure_MPa", {}};
+  for (double x : pressure_Pa) p.values.push_back(x * 1e-6);
+  s.cell_data.push_back(std::move(p));
+  io::VtpArray h{"layer_thickness_mm", {}};
+  for (double x : insert.thickness) h.values.push_back(x * 1e3);
+  s.cell_data.push_back(std::move(h));
+  io::write_vtp(path, s);
+}
+
+}  // namespace kneesim::cli

@@ -37,8 +37,7 @@ int segments(double length, double edge) {
 
 // triangle (a, b, c) appended with its winding turned so its normal points along `outward`
 void add_triangle(TriMesh& m, int a, int b, int c, const Eigen::Vector3d& outward) {
-  const Eigen::Vector3d n =
-      (m.vertices[b] - m.vertices[a]).cross(m.vertices[c] - m.vertices[a]);
+  const Eigen::Vector3d n = (m.vertices[b] - m.vertices[a]).cross(m.vertices[c] - m.vertices[a]);
   if (n.dot(outward) < 0.0) std::swap(b, c);
   m.triangles.emplace_back(a, b, c);
 }
@@ -123,7 +122,8 @@ TriMesh make_condyle(const GenericTkrParams& p, double zc, double e) {
     const Eigen::Vector3d outward(tan.x(), tan.y(), 0.0);
     const int centre = static_cast<int>(m.vertices.size());
     m.vertices.push_back(ring_centre[i]);
-    for (int k = 0; k < nr; ++k) add_triangle(m, centre, i * nr + k, i * nr + (k + 1) % nr, outward);
+    for (int k = 0; k < nr; ++k)
+      add_triangle(m, centre, i * nr + k, i * nr + (k + 1) % nr, outward);
   }
   return m;
 }
@@ -271,8 +271,10 @@ TriMesh make_generic_insert(const GenericTkrParams& p, double edge_length_m) {
     const Eigen::Vector3d a = m.vertices[column[k][0]], b = m.vertices[column[k1][0]];
     Eigen::Vector3d out = 0.5 * (a + b);
     out.y() = 0.0;
-    if (std::abs(std::abs(out.x()) - hx) < 1e-12) out.z() = 0.0;
-    else out.x() = 0.0;
+    if (std::abs(std::abs(out.x()) - hx) < 1e-12)
+      out.z() = 0.0;
+    else
+      out.x() = 0.0;
     for (int r = 0; r < rows; ++r) {
       add_quad(m, column[k][r], column[k1][r], column[k1][r + 1], column[k][r + 1], out);
     }
@@ -289,8 +291,7 @@ double femur_lowest_point_y(const GenericTkrParams& p, double flexion_rad) {
   if (flexion_rad <= p.femur_transition_rad) return -p.femur_distal_radius_m;
   const Eigen::Vector2d c = posterior_centre(p);
   // the posterior arc centre turned by the flexion, less the posterior radius
-  return c.x() * std::sin(flexion_rad) + c.y() * std::cos(flexion_rad) -
-         p.femur_posterior_radius_m;
+  return c.x() * std::sin(flexion_rad) + c.y() * std::cos(flexion_rad) - p.femur_posterior_radius_m;
 }
 
 }  // namespace kneesim::models

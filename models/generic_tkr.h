@@ -29,24 +29,24 @@ namespace kneesim::models {
 
 struct GenericTkrParams {
   // femoral component
-  double femur_distal_radius_m = 0.038;       // sagittal radius of the distal arc, centred at F [m]
-  double femur_posterior_radius_m = 0.022;    // sagittal radius of the posterior arc [m]
-  double femur_coronal_radius_m = 0.020;      // convex coronal radius of each condyle [m]
-  double condyle_width_m = 0.020;             // ML width of each femoral condyle [m]
-  double condyle_spacing_m = 0.044;           // ML distance between condyle (and dish) centres [m]
+  double femur_distal_radius_m = 0.038;     // sagittal radius of the distal arc, centred at F [m]
+  double femur_posterior_radius_m = 0.022;  // sagittal radius of the posterior arc [m]
+  double femur_coronal_radius_m = 0.020;    // convex coronal radius of each condyle [m]
+  double condyle_width_m = 0.020;           // ML width of each femoral condyle [m]
+  double condyle_spacing_m = 0.044;         // ML distance between condyle (and dish) centres [m]
   double femur_transition_rad = 0.5235987755982988;  // flexion where contact passes from the
                                                      // distal to the posterior arc (30 deg) [rad]
-  double femur_anterior_extent_rad = 0.4363323129985824;   // profile before 0 flexion (25 deg) [rad]
+  double femur_anterior_extent_rad = 0.4363323129985824;  // profile before 0 flexion (25 deg) [rad]
   double femur_posterior_extent_rad = 2.0943951023931953;  // flexion at the posterior end
                                                            // of the profile (120 deg) [rad]
-  double femur_thickness_m = 0.008;           // radial thickness of each condyle solid [m]
+  double femur_thickness_m = 0.008;  // radial thickness of each condyle solid [m]
   // tibial insert
-  double insert_sagittal_radius_m = 0.070;    // sagittal radius of each dish [m]
-  double insert_coronal_radius_m = 0.025;     // coronal radius of each dish [m]
-  double insert_thickness_m = 0.008;          // dwell (minimum articular) height above the base [m]
-  double insert_eminence_height_m = 0.014;    // height of the eminence and rim plane [m]
-  double insert_ap_depth_m = 0.046;           // AP size of the insert [m]
-  double insert_ml_width_m = 0.072;           // ML size of the insert [m]
+  double insert_sagittal_radius_m = 0.070;  // sagittal radius of each dish [m]
+  double insert_coronal_radius_m = 0.025;   // coronal radius of each dish [m]
+  double insert_thickness_m = 0.008;        // dwell (minimum articular) height above the base [m]
+  double insert_eminence_height_m = 0.014;  // height of the eminence and rim plane [m]
+  double insert_ap_depth_m = 0.046;         // AP size of the insert [m]
+  double insert_ml_width_m = 0.072;         // ML size of the insert [m]
 };
 
 // throws InputError naming the parameter (with its config key in mm or deg), its value and

@@ -3,14 +3,14 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <assimp/Importer.hpp>
 #include <array>
+#include <assimp/Importer.hpp>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <unordered_map>
 #include <random>
 #include <stdexcept>
+#include <unordered_map>
 #include <vector>
 
 #include "engine/errors.h"
@@ -90,9 +90,9 @@ TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& op
   // read with assimp: triangulate and flatten the node hierarchy
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_COLORS);
-  const aiScene* scene = importer.ReadFile(
-      file.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                         aiProcess_RemoveComponent | aiProcess_SortByPType);
+  const aiScene* scene =
+      importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                           aiProcess_RemoveComponent | aiProcess_SortByPType);
   if (scene == nullptr) {
     // assimp reports a well-formed file without faces as an error of its own
     const std::string why = importer.GetErrorString();
@@ -141,8 +141,7 @@ void save_mesh(const std::filesystem::path& file, const TriMesh& mesh) {
   // temporary file beside the target, then rename
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   std::random_device rd;
-  const std::filesystem::path tmp =
-      file.string() + ".tmp" + std::to_string(rd() % 1000000);
+  const std::filesystem::path tmp = file.string() + ".tmp" + std::to_string(rd() % 1000000);
   {
     std::ofstream os(tmp, std::ios::binary | std::ios::trunc);
     os.write(out.data(), static_cast<std::streamsize>(out.size()));

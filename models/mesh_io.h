@@ -15,7 +15,7 @@ namespace kneesim::models {
 
 struct MeshImportOptions {
   std::string units = "m";  // unit of the file's coordinates: "m" or "mm"
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // file axes -> project axes [-], 3x3
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();   // file axes -> project axes [-], 3x3
   Eigen::Vector3d translation_m = Eigen::Vector3d::Zero();  // added after rotation [m], 3
   bool mirror_z = false;        // z -> -z after rotation (left knee -> right knee); winding kept
                                 // outward

@@ -29,9 +29,7 @@ std::vector<EdgeUse> edge_uses(const TriMesh& m) {
   return e;
 }
 
-Eigen::Vector3d corner(const TriMesh& m, int tri, int k) {
-  return m.vertices[m.triangles[tri][k]];
-}
+Eigen::Vector3d corner(const TriMesh& m, int tri, int k) { return m.vertices[m.triangles[tri][k]]; }
 
 }  // namespace
 
@@ -39,7 +37,8 @@ std::vector<Eigen::Vector3d> face_normals(const TriMesh& m) {
   std::vector<Eigen::Vector3d> n(m.triangles.size());
   for (std::size_t i = 0; i < m.triangles.size(); ++i) {
     const int t = static_cast<int>(i);
-    const Eigen::Vector3d c = (corner(m, t, 1) - corner(m, t, 0)).cross(corner(m, t, 2) - corner(m, t, 0));
+    const Eigen::Vector3d c =
+        (corner(m, t, 1) - corner(m, t, 0)).cross(corner(m, t, 2) - corner(m, t, 0));
     const double len = c.norm();
     n[i] = len > 0.0 ? Eigen::Vector3d(c / len) : Eigen::Vector3d::Zero();
   }
@@ -50,7 +49,8 @@ std::vector<double> face_areas(const TriMesh& m) {
   std::vector<double> a(m.triangles.size());
   for (std::size_t i = 0; i < m.triangles.size(); ++i) {
     const int t = static_cast<int>(i);
-    a[i] = 0.5 * (corner(m, t, 1) - corner(m, t, 0)).cross(corner(m, t, 2) - corner(m, t, 0)).norm();
+    a[i] =
+        0.5 * (corner(m, t, 1) - corner(m, t, 0)).cross(corner(m, t, 2) - corner(m, t, 0)).norm();
   }
   return a;
 }

@@ -29,9 +29,7 @@ struct MeshCheck {
   bool manifold() const { return nonmanifold_edges == 0 && bad_indices == 0; }
   bool consistently_oriented() const { return inconsistent_edges == 0; }
   // closed, manifold, consistently oriented, without degenerate faces
-  bool watertight() const {
-    return closed() && consistently_oriented() && degenerate_faces == 0;
-  }
+  bool watertight() const { return closed() && consistently_oriented() && degenerate_faces == 0; }
 };
 
 struct EdgeStats {
@@ -42,10 +40,10 @@ struct EdgeStats {
 };
 
 struct SubMesh {
-  TriMesh mesh;                        // the selected triangles with compacted vertices
-  std::vector<int> vertex_to_parent;   // parent vertex index of each sub-mesh vertex, n_vertices
-  std::vector<int> triangle_to_parent; // parent triangle index of each sub-mesh triangle
-  std::vector<int> parent_to_vertex;   // sub-mesh index of each parent vertex, or -1
+  TriMesh mesh;                         // the selected triangles with compacted vertices
+  std::vector<int> vertex_to_parent;    // parent vertex index of each sub-mesh vertex, n_vertices
+  std::vector<int> triangle_to_parent;  // parent triangle index of each sub-mesh triangle
+  std::vector<int> parent_to_vertex;    // sub-mesh index of each parent vertex, or -1
 };
 
 // unit normal of each triangle (zero for a degenerate triangle), n_triangles

@@ -12,8 +12,8 @@
 namespace kneesim::loads {
 
 struct WaveformConventions {
-  double ap_sign = 1.0;    // multiplies every `ap_` channel; -1 when the file has + posterior [-]
-  double ie_sign = 1.0;    // multiplies every `ie_` channel; -1 when the file has + external [-]
+  double ap_sign = 1.0;  // multiplies every `ap_` channel; -1 when the file has + posterior [-]
+  double ie_sign = 1.0;  // multiplies every `ie_` channel; -1 when the file has + external [-]
   // true when the file's channels are components in a LEFT knee's axes that keep the
   // OpenSim-like global directions (+z to the subject's right, i.e. medial for a left knee).
   // The data is mirrored into the project's right knee (z -> -z): `ml_`, `ie_` and `vv_`

@@ -38,8 +38,8 @@ std::vector<double> read_pct(const TextTable& t, int col) {
                               ", column '" + t.header[col] + "': " + t.cells[r][col];
     if (p < 0.0 || p > 100.0) throw InputError(where + " is outside the allowed range 0..100 %.");
     if (!pct.empty() && p <= pct.back()) {
-      throw InputError(where + " does not increase over the previous row (" +
-                       t.cells[r - 1][col] + ").");
+      throw InputError(where + " does not increase over the previous row (" + t.cells[r - 1][col] +
+                       ").");
     }
     pct.push_back(p);
   }
@@ -87,8 +87,8 @@ MeasuredKinematics read_sto(const std::filesystem::path& file, const Eigen::Vect
   const Eigen::Matrix3d S = Eigen::Vector3d(-1.0, 1.0, -1.0).asDiagonal();
   for (std::size_t r = 0; r < t.cells.size(); ++r) {
     const Eigen::Vector3d t_dm(t.number(r, cols[0]), t.number(r, cols[1]), t.number(r, cols[2]));
-    const Eigen::Matrix3d R_dm = rot(0, t.number(r, cols[3])) * rot(1, t.number(r, cols[4])) *
-                                 rot(2, t.number(r, cols[5]));
+    const Eigen::Matrix3d R_dm =
+        rot(0, t.number(r, cols[3])) * rot(1, t.number(r, cols[4])) * rot(2, t.number(r, cols[5]));
     Eigen::Isometry3d X_TF = Eigen::Isometry3d::Identity();
     X_TF.linear() = S * R_dm * S;
     X_TF.translation() = S * t_dm;
@@ -112,16 +112,16 @@ MeasuredKinematics read_csv(const std::filesystem::path& file) {
   if (int c = t.column("is_mm"); c >= 0) k.is_mm = read_column(t, c);
   auto at = [](const std::vector<double>& v, std::size_t i) { return v.empty() ? 0.0 : v[i]; };
   for (std::size_t i = 0; i < k.size(); ++i) {
-    k.X_TF.push_back(pose_from_channels(k.flexion_deg[i], k.ap_mm[i], k.ie_deg[i],
-                                        at(k.ml_mm, i), at(k.vv_deg, i), at(k.is_mm, i)));
+    k.X_TF.push_back(pose_from_channels(k.flexion_deg[i], k.ap_mm[i], k.ie_deg[i], at(k.ml_mm, i),
+                                        at(k.vv_deg, i), at(k.is_mm, i)));
   }
   return k;
 }
 
 }  // namespace
 
-Eigen::Isometry3d pose_from_channels(double flexion_deg, double ap_mm, double ie_deg,
-                                     double ml_mm, double vv_deg, double is_mm) {
+Eigen::Isometry3d pose_from_channels(double flexion_deg, double ap_mm, double ie_deg, double ml_mm,
+                                     double vv_deg, double is_mm) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.linear() = rot(0, -vv_deg * kDeg) * rot(1, -ie_deg * kDeg) * rot(2, flexion_deg * kDeg);
   X.translation() = -1e-3 * Eigen::Vector3d(ap_mm, is_mm, ml_mm);

@@ -34,14 +34,14 @@
 namespace kneesim::loads {
 
 struct MeasuredKinematics {
-  std::string source;                 // file it was read from
-  std::vector<double> gait_pct;       // [%] strictly increasing in 0..100, n
-  std::vector<double> flexion_deg;    // [deg] n
-  std::vector<double> ap_mm;          // [mm] n
-  std::vector<double> ie_deg;         // [deg] n
-  std::vector<double> ml_mm;          // [mm] n, or empty when the source has none
-  std::vector<double> vv_deg;         // [deg] n, or empty when the source has none
-  std::vector<double> is_mm;          // [mm] n, or empty when the source has none
+  std::string source;                   // file it was read from
+  std::vector<double> gait_pct;         // [%] strictly increasing in 0..100, n
+  std::vector<double> flexion_deg;      // [deg] n
+  std::vector<double> ap_mm;            // [mm] n
+  std::vector<double> ie_deg;           // [deg] n
+  std::vector<double> ml_mm;            // [mm] n, or empty when the source has none
+  std::vector<double> vv_deg;           // [deg] n, or empty when the source has none
+  std::vector<double> is_mm;            // [mm] n, or empty when the source has none
   std::vector<Eigen::Isometry3d> X_TF;  // pose of F in T [m], project axes, n (absent
                                         // channels taken as zero)
   std::size_t size() const { return gait_pct.size(); }
@@ -57,8 +57,8 @@ MeasuredKinematics read_kinematics(const std::filesystem::path& file,
                                    const Eigen::Vector3d& p_FR_F = Eigen::Vector3d::Zero());
 
 // the pose of F in T from the channels (see the convention above)
-Eigen::Isometry3d pose_from_channels(double flexion_deg, double ap_mm, double ie_deg,
-                                     double ml_mm, double vv_deg, double is_mm);
+Eigen::Isometry3d pose_from_channels(double flexion_deg, double ap_mm, double ie_deg, double ml_mm,
+                                     double vv_deg, double is_mm);
 
 // a table waveform (linear periodic interpolation) with the channels present in `k`
 // (flexion_deg, ap_mm, ie_deg, then ml_mm, vv_deg, is_mm when present), so displacement mode

@@ -14,10 +14,10 @@
 namespace kneesim::loads {
 
 struct TextTable {
-  std::filesystem::path file;                   // where it was read from
-  std::vector<std::string> header;              // column names, trimmed
-  std::vector<std::vector<std::string>> cells;  // rows x header.size(), trimmed
-  std::vector<int> line;                        // 1-based file line of each row, rows
+  std::filesystem::path file;                     // where it was read from
+  std::vector<std::string> header;                // column names, trimmed
+  std::vector<std::vector<std::string>> cells;    // rows x header.size(), trimmed
+  std::vector<int> line;                          // 1-based file line of each row, rows
   std::map<std::string, std::string> directives;  // `# key: value` comments, lower-case keys
 
   int column(const std::string& name) const;  // index of a header name, -1 if absent

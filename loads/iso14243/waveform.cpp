@@ -27,9 +27,8 @@ std::string fmt(double v) {
 // checks one gait_pct value against the range and its predecessor
 void check_pct(const TextTable& t, std::size_t row, std::size_t col, double pct, double prev,
                bool has_prev, const std::string& what) {
-  const std::string where =
-      display_path(t.file) + ": line " + std::to_string(t.line[row]) + ", column '" +
-      t.header[col] + "'";
+  const std::string where = display_path(t.file) + ": line " + std::to_string(t.line[row]) +
+                            ", column '" + t.header[col] + "'";
   if (pct < 0.0 || pct > kCycle) {
     throw InputError(where + ": " + fmt(pct) + " is outside the allowed range 0..100 %.");
   }
@@ -108,15 +107,15 @@ Waveform Waveform::load(const std::filesystem::path& file) {
                    "' is not a known form; allowed forms are 'table' and 'keypoints'.");
 }
 
-Waveform Waveform::from_table(const std::vector<std::string>& names,
-                              const std::vector<double>& pct,
+Waveform Waveform::from_table(const std::vector<std::string>& names, const std::vector<double>& pct,
                               const std::vector<std::vector<double>>& columns,
                               const std::string& source) {
   Waveform w;
   w.source_ = source;
   for (std::size_t c = 0; c < names.size(); ++c) {
     if (columns.size() != names.size() || columns[c].size() != pct.size()) {
-      throw InputError(source + ": column '" + names[c] + "' has a different length from gait_pct.");
+      throw InputError(source + ": column '" + names[c] +
+                       "' has a different length from gait_pct.");
     }
     w.add_channel(names[c], Interpolation::linear, pct, columns[c]);
   }

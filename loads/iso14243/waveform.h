@@ -41,9 +41,9 @@ class Waveform {
 
   // one channel of key points joined by half-cosine segments (for code-built waveforms)
   struct KeyPoints {
-    std::string name;          // channel name with unit suffix, e.g. "flexion_deg"
-    std::vector<double> pct;   // [% of gait cycle], strictly increasing in 0..100, n >= 2
-    std::vector<double> value; // [channel unit], n
+    std::string name;           // channel name with unit suffix, e.g. "flexion_deg"
+    std::vector<double> pct;    // [% of gait cycle], strictly increasing in 0..100, n >= 2
+    std::vector<double> value;  // [channel unit], n
   };
   static Waveform from_keypoints(const std::vector<KeyPoints>& channels,
                                  const std::string& source = "<keypoints>");
@@ -69,12 +69,12 @@ class Waveform {
 
  private:
   struct Channel {
-    std::string name;        // with unit suffix
-    Interpolation interp;    // segment shape
-    std::vector<double> t;   // [%], strictly increasing, padded so t.front() <= 0, t.back() >= 100
-    std::vector<double> v;   // [channel unit], t.size()
-    int first = 0;           // index of the first defining (unpadded) point
-    int count = 0;           // number of defining points
+    std::string name;       // with unit suffix
+    Interpolation interp;   // segment shape
+    std::vector<double> t;  // [%], strictly increasing, padded so t.front() <= 0, t.back() >= 100
+    std::vector<double> v;  // [channel unit], t.size()
+    int first = 0;          // index of the first defining (unpadded) point
+    int count = 0;          // number of defining points
   };
   void add_channel(const std::string& name, Interpolation interp, const std::vector<double>& t,
                    const std::vector<double>& v);

@@ -74,8 +74,7 @@ TEST_CASE("DM fluoroscopic gait matches the README's key values") {
   auto w = kneesim::loads::to_waveform(k);
   CHECK(w.channel_count() == 6);
   CHECK(w.value(w.channel("flexion_deg"), 82.0) == doctest::Approx(k.flexion_deg[82]));
-  CHECK(w.value(w.channel("ie_deg"), 40.5) ==
-        doctest::Approx(0.5 * (k.ie_deg[40] + k.ie_deg[41])));
+  CHECK(w.value(w.channel("ie_deg"), 40.5) == doctest::Approx(0.5 * (k.ie_deg[40] + k.ie_deg[41])));
 }
 
 TEST_CASE("a femoral reference point moves the reported translation") {

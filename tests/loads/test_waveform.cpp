@@ -24,7 +24,9 @@ std::filesystem::path source_dir() {
   return s ? std::filesystem::path(s) : std::filesystem::path(KNEESIM_TEST_SOURCE_DIR);
 }
 
-Waveform shipped(const char* name) { return Waveform::load(source_dir() / "loads/iso14243" / name); }
+Waveform shipped(const char* name) {
+  return Waveform::load(source_dir() / "loads/iso14243" / name);
+}
 
 // the message of the InputError thrown by loading `text`, or "" when none is thrown
 std::string load_error(const std::string& text) {
@@ -56,8 +58,7 @@ TEST_CASE("shipped ISO 14243-1 key points reproduce the published values") {
   CHECK(w.value(axial, 0.0) == doctest::Approx(167.6).epsilon(1e-12));
   // flexion over 0-15 % is 8 (1 - cos(pi t / 15)) deg
   for (double t = 0.0; t <= 15.0; t += 0.25) {
-    CHECK(std::abs(w.value(flex, t) - 8.0 * (1.0 - std::cos(std::numbers::pi * t / 15.0))) <
-          1e-9);
+    CHECK(std::abs(w.value(flex, t) - 8.0 * (1.0 - std::cos(std::numbers::pi * t / 15.0))) < 1e-9);
   }
   // the derivative of that curve is (8 pi / 15) sin(pi t / 15) per %
   for (double t = 0.5; t < 15.0; t += 0.5) {
@@ -172,8 +173,9 @@ TEST_CASE("every load error names the file and the place") {
   } catch (const InputError& e) {
     CHECK(std::string(e.what()) == missing.string() + ": file not found (or not a regular file).");
   }
-  CHECK(load_error("gait_pct,a_N\n0,1\n10,x1\n").find(": line 3, column 'a_N': 'x1' is not a "
-                                                      "finite number.") != std::string::npos);
+  CHECK(load_error("gait_pct,a_N\n0,1\n10,x1\n")
+            .find(": line 3, column 'a_N': 'x1' is not a "
+                  "finite number.") != std::string::npos);
   CHECK(load_error("gait_pct,a_N\n0,1\n10,nan\n").find("'nan' is not a finite number") !=
         std::string::npos);
   CHECK(load_error("gait_pct,a_N,b_N\n0,1,2\n10,1\n")
@@ -186,8 +188,9 @@ TEST_CASE("every load error names the file and the place") {
         std::string::npos);
   CHECK(load_error("gait_pct,a_N\n-1,1\n10,2\n").find("-1 is outside the allowed range") !=
         std::string::npos);
-  CHECK(load_error("gait_pct,a_N\n5,1\n").find("channel 'a_N' has 1 point(s); at least 2 are "
-                                               "needed.") != std::string::npos);
+  CHECK(load_error("gait_pct,a_N\n5,1\n")
+            .find("channel 'a_N' has 1 point(s); at least 2 are "
+                  "needed.") != std::string::npos);
   CHECK(load_error("time,a_N\n5,1\n").find("the first column must be 'gait_pct', found 'time'") !=
         std::string::npos);
   CHECK(load_error("# only a comment\n").find(": no header line found.") != std::string::npos);
@@ -204,8 +207,9 @@ TEST_CASE("every load error names the file and the place") {
             .find("channel 'b_N' has 1 point(s); at least 2 are needed.") != std::string::npos);
   CHECK(load_error(kp + "a_N,0,1\na_N,300,1\n").find("300 is outside the allowed range 0..100") !=
         std::string::npos);
-  CHECK(load_error("# form: keypoints\ngait_pct,a_N\n0,1\n").find(
-            "a keypoints file needs the header 'channel,gait_pct,value'") != std::string::npos);
+  CHECK(load_error("# form: keypoints\ngait_pct,a_N\n0,1\n")
+            .find("a keypoints file needs the header 'channel,gait_pct,value'") !=
+        std::string::npos);
   // a good file loads without error
   CHECK(load_error(kp + "a_N,0,1\na_N,3,1\n").empty());
 }

@@ -59,7 +59,8 @@ Circle fit_circle(const std::vector<Eigen::Vector2d>& pts) {
   }
   const Eigen::Vector3d s = A.colPivHouseholderQr().solve(b);
   Circle c{{s[0], s[1]}, std::sqrt(s[2] + s[0] * s[0] + s[1] * s[1]), 0.0};
-  for (const auto& p : pts) c.max_residual = std::max(c.max_residual, std::abs((p - c.centre).norm() - c.radius));
+  for (const auto& p : pts)
+    c.max_residual = std::max(c.max_residual, std::abs((p - c.centre).norm() - c.radius));
   return c;
 }
 
@@ -180,9 +181,8 @@ TEST_CASE("femur sagittal sections recover the distal and posterior radii") {
   CHECK(c.radius == doctest::Approx(p.femur_distal_radius_m).epsilon(1e-9));
   CHECK(c.centre.norm() < 1e-9);
   // posterior arc, 22 mm, tangent to the distal arc at the transition
-  const Eigen::Vector2d cp =
-      (p.femur_distal_radius_m - p.femur_posterior_radius_m) *
-      Eigen::Vector2d(-std::sin(th_t), -std::cos(th_t));
+  const Eigen::Vector2d cp = (p.femur_distal_radius_m - p.femur_posterior_radius_m) *
+                             Eigen::Vector2d(-std::sin(th_t), -std::cos(th_t));
   auto posterior = arc_points(pts, cp, 0.018, th_t + 2 * kDeg, 115 * kDeg);
   REQUIRE(posterior.size() > 20);
   c = fit_circle(posterior);
@@ -193,7 +193,8 @@ TEST_CASE("femur sagittal sections recover the distal and posterior radii") {
   distal = arc_points(pts, Eigen::Vector2d::Zero(), 0.034, -20 * kDeg, th_t - 2 * kDeg);
   c = fit_circle(distal);
   const double rcor = p.femur_coronal_radius_m;
-  const double expected = p.femur_distal_radius_m - (rcor - std::sqrt(rcor * rcor - 0.0053 * 0.0053));
+  const double expected =
+      p.femur_distal_radius_m - (rcor - std::sqrt(rcor * rcor - 0.0053 * 0.0053));
   CHECK(std::abs(c.radius - expected) < 2e-5);  // facet error < 20 um at 1 mm
   CHECK(c.max_residual < 2e-5);
 }

@@ -78,14 +78,15 @@ TEST_CASE("STL round trip of the generic insert") {
   double max_err = 0.0;
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     for (int k = 0; k < 3; ++k) {
-      max_err = std::max(max_err, (r.vertices[r.triangles[t][k]] -
-                                   m.vertices[m.triangles[t][k]]).norm());
+      max_err =
+          std::max(max_err, (r.vertices[r.triangles[t][k]] - m.vertices[m.triangles[t][k]]).norm());
     }
   }
   CHECK(max_err < 1e-8);
   // no temporary file is left beside the result
   int files = 0;
-  for (auto& entry : std::filesystem::directory_iterator(dir.path / "sub")) files += entry.is_regular_file();
+  for (auto& entry : std::filesystem::directory_iterator(dir.path / "sub"))
+    files += entry.is_regular_file();
   CHECK(files == 1);
 }
 
@@ -139,16 +140,18 @@ TEST_CASE("import errors name the file") {
   const auto lines = dir.write("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
   CHECK(import_error(lines) == lines.string() + ": the mesh has no triangles.");
   // an open tetrahedron (one face missing): 3 open edges
-  const auto open = dir.write("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
-                                          "f 1 3 2\nf 1 2 4\nf 1 4 3\n");
+  const auto open = dir.write("open.obj",
+                              "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                              "f 1 3 2\nf 1 2 4\nf 1 4 3\n");
   CHECK(import_error(open).empty());
   CHECK(import_error(open, closed_options()) ==
-        open.string() + ": the mesh is not closed: 3 open edges and 0 non-manifold edges; a "
-                        "closed manifold surface is required.");
+        open.string() +
+            ": the mesh is not closed: 3 open edges and 0 non-manifold edges; a "
+            "closed manifold surface is required.");
   MeshImportOptions cm;
   cm.units.assign("cm");
-  CHECK(import_error(dir.write("t.obj", kTetraObj), cm).find(
-            "units 'cm' are not allowed; use \"m\" or \"mm\".") != std::string::npos);
+  CHECK(import_error(dir.write("t.obj", kTetraObj), cm)
+            .find("units 'cm' are not allowed; use \"m\" or \"mm\".") != std::string::npos);
   MeshImportOptions bad_rot;
   bad_rot.rotation = Eigen::Vector3d(1.0, 1.0, -1.0).asDiagonal();
   CHECK(import_error(dir.write("u.obj", kTetraObj), bad_rot).find("not a proper rotation") !=

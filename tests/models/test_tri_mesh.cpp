@@ -35,7 +35,8 @@ TEST_CASE("cube: volume, area, centroid, normals") {
   const auto fn = kneesim::models::face_normals(m);
   for (std::size_t i = 0; i < m.triangles.size(); ++i) {
     const Eigen::Vector3d mid = (m.vertices[m.triangles[i][0]] + m.vertices[m.triangles[i][1]] +
-                                 m.vertices[m.triangles[i][2]]) / 3.0;
+                                 m.vertices[m.triangles[i][2]]) /
+                                3.0;
     CHECK(fn[i].dot(mid - Eigen::Vector3d(0.5, 0.5, 0.5)) > 0.0);
   }
   // angle weighting makes corner normals the exact diagonals despite unequal triangle counts
@@ -120,8 +121,8 @@ TEST_CASE("submesh keeps index maps") {
   CHECK(s.parent_to_vertex[0] == -1);
   CHECK(kneesim::models::check_mesh(s.mesh).boundary_edges == 4);
   TriMesh two = m;
-  kneesim::models::append(two, kneesim::models::transformed(
-                                   m, Eigen::Isometry3d(Eigen::Translation3d(3.0, 0.0, 0.0))));
+  kneesim::models::append(
+      two, kneesim::models::transformed(m, Eigen::Isometry3d(Eigen::Translation3d(3.0, 0.0, 0.0))));
   CHECK(kneesim::models::enclosed_volume(two) == doctest::Approx(2.0));
   CHECK(kneesim::models::check_mesh(two).watertight());
 }

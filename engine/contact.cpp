@@ -8,50 +8,50 @@
 
 namespace kneesim::engine {
 
-void update_contact_candidates(const Model& model, const Data& kin, Data& data) {
-  const Eigen::Isometry3d X_FT = kin.X_WF.inverse() * kin.X_WT;
-  if (data.candidates_valid) {
-    // largest displacement of any insert point relative to the femur since the last refresh
-    const Eigen::Isometry3d delta = data.X_FT_at_refresh.inverse() * X_FT;
+void update_contact_schedule(const Model& model, Data& data) {
+  const Eigen::Isometry3d X_FT = data.X_WF.inverse() * data.X_WT;
+  if (!data.schedule_valid) {
+    std::fill(data.recheck_at.begin(), data.recheck_at.end(), data.motion);
+    data.schedule_valid = true;
+  } else {
+    // bound on the displacement of any insert point relative to the femur over this step
+    const Eigen::Isometry3d delta = data.X_FT_prev.inverse() * X_FT;
     const double angle = Eigen::AngleAxisd(delta.linear()).angle();
-    const double moved = delta.translation().norm() + angle * data.insert_radius;
-    if (moved < 0.5 * model.contact.margin) return;
+    data.motion += delta.translation().norm() + angle * data.insert_radius;
   }
-  // elements that were candidates hold stale results: clear them before the new list
-  for (int e : data.candidates) {
-    data.pressure[e] = 0.0;
-    data.penetration[e] = 0.0;
-    data.slip_speed[e] = 0.0;
-    data.slip_velocity_T[e].setZero();
-    data.element_force_W[e].setZero();
+  data.X_FT_prev = X_FT;
+  data.due.clear();
+  const int n = model.insert.size();
+  for (int e = 0; e < n; ++e) {
+    if (data.recheck_at[e] <= data.motion) data.due.push_back(e);  // capacity reserved
   }
-  data.candidates.clear();
-  const InsertSurface& s = model.insert;
-  for (int e = 0; e < s.size(); ++e) {
-    const double phi = model.femur_sdf.sample(X_FT * s.centroid_T[e]);
-    if (phi < model.contact.margin) data.candidates.push_back(e);  // capacity reserved
-  }
-  data.X_FT_at_refresh = X_FT;
-  data.candidates_valid = true;
-  ++data.candidate_refreshes;
 }
 
 void calc_contact(const Model& model, const State& state, Data& data) {
-  update_contact_candidates(model, data, data);
+  update_contact_schedule(model, data);
   const InsertSurface& s = model.insert;
   const ContactModel& cm = model.contact;
   const Eigen::Isometry3d X_FW = data.X_WF.inverse();
   const Eigen::Matrix3d R_TW = data.X_WT.linear().transpose();
-  const int n = static_cast<int>(data.candidates.size());
+  const int n = static_cast<int>(data.due.size());
+  data.evaluations += n;
 
   // element-local evaluation (parallel when large; each element writes only its own slots)
-#pragma omp parallel for schedule(static) if (n > 4000) num_threads(model.threads)
+#pragma omp parallel for schedule(static) if (n > 2000) num_threads(model.threads)
   for (int i = 0; i < n; ++i) {
-    const int e = data.candidates[i];
+    const int e = data.due[i];
     const Eigen::Vector3d c_W = data.X_WT * s.centroid_T[e];
     const double phi = model.femur_sdf.sample(X_FW * c_W);
     const double d = -phi;
     if (d <= 0.0) {
+      // out of contact: sleep until the motion could have closed the gap; beyond the fine
+      // band the coarse field (less its interpolation error) tells the distance
+      double gap = phi;
+      if (phi >= model.femur_sdf.band) {
+        const double far = model.femur_far_sdf.sample(X_FW * c_W) - model.femur_far_sdf.spacing;
+        gap = std::max(phi, far);
+      }
+      data.recheck_at[e] = data.motion + kLipschitz * gap;
       data.pressure[e] = 0.0;
       data.penetration[e] = 0.0;
       data.slip_speed[e] = 0.0;
@@ -59,6 +59,7 @@ void calc_contact(const Model& model, const State& state, Data& data) {
       data.element_force_W[e].setZero();
       continue;
     }
+    data.recheck_at[e] = data.motion;  // in contact: evaluate every step
     const Eigen::Vector3d n_W = data.X_WT.linear() * s.normal_T[e];
     const double h = s.thickness[e];
     // relative velocity of the femoral surface over the insert at the element
@@ -78,15 +79,17 @@ void calc_contact(const Model& model, const State& state, Data& data) {
     data.slip_velocity_T[e] = R_TW * v_slip;
     data.element_force_W[e] = s.area[e] * traction;
   }
+  data.in_contact.clear();
+  for (int i = 0; i < n; ++i) {
+    if (data.penetration[data.due[i]] > 0.0) data.in_contact.push_back(data.due[i]);
+  }
 
   // fixed-order reduction: totals, per-condyle summary, torques about the pivots
   ContactSummary& sum = data.contact;
   sum = ContactSummary{};
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment_O = Eigen::Vector3d::Zero();
   std::array<double, 2> weight{};
-  for (int i = 0; i < n; ++i) {
-    const int e = data.candidates[i];
-    if (data.penetration[e] <= 0.0) continue;
+  for (int e : data.in_contact) {
     const Eigen::Vector3d c_W = data.X_WT * s.centroid_T[e];
     const Eigen::Vector3d& f = data.element_force_W[e];
     force += f;

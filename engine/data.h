@@ -26,14 +26,19 @@ struct ContactSummary {
 };
 
 struct Data {
-  // contact candidates (Verlet list with skin Model::contact.margin)
-  std::vector<int> candidates;             // element indices, capacity n_elements
-  Eigen::Isometry3d X_FT_at_refresh = Eigen::Isometry3d::Identity();
-  bool candidates_valid = false;
-  long candidate_refreshes = 0;
+  // contact search schedule: an element whose distance to the femur was phi when last
+  // evaluated cannot touch it before the relative motion accumulated since then exceeds phi,
+  // so it sleeps until `motion` passes recheck_at[e] (engine/contact.h)
+  std::vector<double> recheck_at;          // motion value of the next evaluation [m], n_elements
+  double motion = 0.0;                     // accumulated bound on insert-point motion [m]
+  Eigen::Isometry3d X_FT_prev = Eigen::Isometry3d::Identity();
+  bool schedule_valid = false;
+  std::vector<int> due;                    // elements evaluated this step, ascending
+  std::vector<int> in_contact;             // elements with penetration > 0, ascending
+  long evaluations = 0;                    // element evaluations so far
   double insert_radius = 0.0;              // max |centroid_T| [m], bounds rotation sweep
 
-  // per element, valid for the current candidates (zero elsewhere)
+  // per element, valid for the elements in contact (zero elsewhere)
   std::vector<double> pressure;            // contact pressure [Pa]
   std::vector<double> penetration;         // [m]
   std::vector<double> slip_speed;          // tangential slip speed femur vs insert [m/s]

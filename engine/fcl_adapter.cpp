@@ -61,24 +61,4 @@ double MeshBvh::closest_point(const Eigen::Vector3d& p, Eigen::Vector3d& closest
   return std::max(0.0, result.min_distance + impl_->probe->radius);
 }
 
-void MeshBvh::find_triangles_in_box(const Eigen::Isometry3d& X_MB,
-                                    const Eigen::Vector3d& half_extents,
-                                    std::vector<int>& out) const {
-  out.clear();
-  auto box = std::make_shared<fcl::Boxd>(2.0 * half_extents);
-  fcl::Transform3d X;
-  X.linear() = X_MB.linear();
-  X.translation() = X_MB.translation();
-  fcl::CollisionObjectd box_object(box, X);
-  fcl::CollisionObjectd mesh(impl_->model, fcl::Transform3d::Identity());
-  fcl::CollisionRequestd request(std::numeric_limits<int>::max() / 2, false);
-  fcl::CollisionResultd result;
-  fcl::collide(&mesh, &box_object, request, result);
-  std::vector<fcl::Contactd> contacts;
-  result.getContacts(contacts);
-  for (const auto& c : contacts) out.push_back(static_cast<int>(c.b1));
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-}
-
 }  // namespace kneesim::engine

@@ -1,7 +1,7 @@
 // The project's only door to FCL/libccd (design.md: one adapter file per library).
-// Two services: exact point-to-mesh distance queries on a BVH (used once, to build the
-// femoral signed distance field) and BVH culling of insert triangles against an oriented box
-// (used by the contact candidate search). FCL types stay inside fcl_adapter.cpp.
+// Two services: the point-triangle projection that builds the femoral signed distance field
+// (engine/sdf.h), and exact point-to-mesh distance queries on an OBBRSS bounding-volume
+// hierarchy (the reference the field is tested against). FCL types stay in fcl_adapter.cpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -32,11 +32,6 @@ class MeshBvh {
 
   // unsigned distance [m] from p to the mesh; the closest point and its triangle index
   double closest_point(const Eigen::Vector3d& p, Eigen::Vector3d& closest, int& triangle) const;
-
-  // indices of triangles whose bounding volumes overlap the box (half extents [m]) placed at
-  // X_MB in the mesh frame; appended to `out` (cleared first), sorted ascending
-  void find_triangles_in_box(const Eigen::Isometry3d& X_MB, const Eigen::Vector3d& half_extents,
-                             std::vector<int>& out) const;
 
  private:
   struct Impl;

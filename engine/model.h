@@ -84,7 +84,6 @@ struct ContactModel {
   double friction = 0.07;           // Coulomb coefficient [-]
   double slip_regularization = 1e-3;  // eps of the regularized Coulomb law [m/s]
   double damping_beta = 0.0;        // stiffness-proportional contact damping [s]
-  double margin = 1e-3;             // candidate-list skin (Verlet margin) [m]
   double runaway_fraction = 0.5;    // stop when penetration exceeds this fraction of h [-]
 };
 
@@ -93,7 +92,8 @@ struct Model {
   std::vector<RestraintSpring> restraint;  // on the tibial carriage
   ContactModel contact;
   InsertSurface insert;
-  SignedDistanceField femur_sdf;           // femoral component, F frame
+  SignedDistanceField femur_sdf;           // femoral component, F frame, fine, narrow band
+  SignedDistanceField femur_far_sdf;       // coarse and wide: how long far elements may sleep
   loads::Waveform gait;                    // periodic gait waveforms
   double period = 1.0;                     // gait cycle duration [s]
   double dt = 1e-4;                        // time step [s] (from calc_stable_time_step)

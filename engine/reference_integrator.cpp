@@ -124,7 +124,7 @@ RunResult simulate_reference(const Model& model, State& state, Data& data,
     result.frames.insert(result.frames.begin(), last);
   }
   result.steps = integrator.num_steps();
-  result.candidate_refreshes = data.candidate_refreshes;
+  result.evaluations = data.evaluations;
   return result;
 }
 

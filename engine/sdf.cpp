@@ -151,11 +151,18 @@ SignedDistanceField make_signed_distance_field(const std::vector<Eigen::Vector3d
       const long i1 = std::min(nx - 1, static_cast<long>(std::floor(ghi.x())));
       const long j1 = std::min(ny - 1, static_cast<long>(std::floor(ghi.y())));
       const long k1 = std::min(z_hi - 1, static_cast<long>(std::floor(ghi.z())));
+      // the distance to the triangle's plane bounds the distance to the triangle from below:
+      // nodes off the plane by more than the band or than their best so far are skipped
+      Eigen::Vector3d normal = (b - a).cross(c - a);
+      const double normal_len = normal.norm();
+      if (normal_len > 0.0) normal /= normal_len;
       for (long k = k0; k <= k1; ++k)
         for (long j = j0; j <= j1; ++j)
           for (long i = i0; i <= i1; ++i) {
             const long n = index(i, j, k);
             const Eigen::Vector3d p = sdf.origin + spacing * Eigen::Vector3d(i, j, k);
+            const double plane = normal.dot(p - a);
+            if (plane * plane >= std::min(static_cast<double>(best[n]), band * band)) continue;
             const double d2 = project_on_triangle(a, b, c, p).squared_distance;
             if (d2 < best[n]) {
               best[n] = static_cast<float>(d2);

@@ -59,7 +59,7 @@ RunResult simulate(const Model& model, State& state, Data& data, const RunOption
     }
   }
   result.steps = state.step;
-  result.candidate_refreshes = data.candidate_refreshes;
+  result.evaluations = data.evaluations;
   return result;
 }
 

@@ -37,7 +37,7 @@ struct RunResult {
   std::vector<Frame> frames;          // last cycle, one per 1 %
   std::vector<std::vector<double>> maps;  // pressure per element [Pa], one per map_pcts
   long steps = 0;
-  long candidate_refreshes = 0;
+  long evaluations = 0;               // contact element evaluations
 };
 
 Frame make_frame(const State& state, const Data& data);

@@ -14,11 +14,11 @@ double position_femur_statically(const Model& model, State& state, Data& data, d
   // bisection on the femur height: contact force rises monotonically as it goes down
   auto force_at = [&](double y) {
     state.carriages[0].pivot_W.y() = y;
-    data.candidates_valid = false;
+    data.schedule_valid = false;
     calc_forces(model, state, data);
     return data.contact.force_W.y();
   };
-  double hi = state.carriages[0].pivot_W.y() + 0.5 * model.contact.margin;
+  double hi = state.carriages[0].pivot_W.y() + 0.5e-3;
   double step = 0.5e-3;
   // raise until out of contact
   for (int i = 0; i < 60 && force_at(hi) > 0.0; ++i) hi += step;
@@ -28,7 +28,7 @@ double position_femur_statically(const Model& model, State& state, Data& data, d
     lo -= 0.1e-3;
     if (force_at(lo) >= load || data.contact.max_penetration_ratio > 0.4) break;
   }
-  for (int it = 0; it < 60; ++it) {
+  for (int it = 0; it < 36; ++it) {  // 20 mm / 2^36: sub-nanometre
     const double mid = 0.5 * (lo + hi);
     if (force_at(mid) > load) {
       lo = mid;
@@ -47,7 +47,7 @@ std::array<std::array<double, kNumDof>, 2> calc_contact_stiffness(const Model& m
   calc_forces(model, state, data);
   std::array<std::array<double, kNumDof>, 2> k{};
   const InsertSurface& s = model.insert;
-  for (int e : data.candidates) {
+  for (int e : data.in_contact) {
     const double d = data.penetration[e];
     if (d <= 0.0) continue;
     const double ke = s.area[e] * ef_stiffness(model.contact.law, model.contact.foundation_modulus,

@@ -193,7 +193,9 @@ State make_initial_state(const Model& model) {
 Data make_data(const Model& model) {
   Data data;
   const int n = model.insert.size();
-  data.candidates.reserve(n);
+  data.recheck_at.assign(n, 0.0);
+  data.due.reserve(n);
+  data.in_contact.reserve(n);
   data.pressure.assign(n, 0.0);
   data.penetration.assign(n, 0.0);
   data.slip_speed.assign(n, 0.0);

@@ -19,6 +19,9 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kMm = 1e-3;
+// the far field only decides how long distant elements may sleep (engine/contact.h)
+constexpr double kFarSpacing = 2.5e-3;  // [m]
+constexpr double kFarBand = 7e-3;    // [m]
 
 std::string config_name(const Config& c) {
   return c.file.empty() ? std::string("built-in config") : c.file.string();
@@ -249,6 +252,8 @@ BuiltModel build_model(const Config& c) {
   m.femur_sdf = engine::make_signed_distance_field(out.implant.femur.vertices,
                                                    out.implant.femur.triangles,
                                                    c.sdf_spacing_mm * kMm, c.sdf_band_mm * kMm);
+  m.femur_far_sdf = engine::make_signed_distance_field(
+      out.implant.femur.vertices, out.implant.femur.triangles, kFarSpacing, kFarBand);
   out.sdf_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - sdf_start).count();
 
@@ -293,7 +298,6 @@ BuiltModel build_model(const Config& c) {
       engine::foundation_modulus(mat.elastic_modulus_MPa * 1e6, mat.poisson);
   m.contact.friction = friction;
   m.contact.slip_regularization = c.friction_regularization_mm_per_s * kMm;
-  m.contact.margin = c.contact_margin_mm * kMm;
   m.contact.runaway_fraction = c.runaway_fraction;
 
   // stable step from the measured contact stiffness over the gait's flexion range

@@ -216,7 +216,6 @@ Registry make_registry(Config& c) {
   r.number("contact.damping_ratio", c.contact_damping_ratio, 0.0, 1.0);
   r.number("contact.sdf_spacing_mm", c.sdf_spacing_mm, 0.05, 2.0);
   r.number("contact.sdf_band_mm", c.sdf_band_mm, 0.5, 10.0);
-  r.number("contact.margin_mm", c.contact_margin_mm, 0.05, 5.0);
   r.number("contact.friction_regularization_mm_per_s", c.friction_regularization_mm_per_s, 1e-4,
            100.0);
   r.number("contact.runaway_fraction", c.runaway_fraction, 0.01, 0.95);

@@ -56,7 +56,6 @@ struct Config {
   double contact_damping_ratio = 0.3;      // of the stiffest contact mode [-]
   double sdf_spacing_mm = 0.4;             // femoral distance-field node spacing [mm]
   double sdf_band_mm = 1.5;                // exact band of the field [mm]
-  double contact_margin_mm = 1.0;          // candidate-list skin [mm]
   double friction_regularization_mm_per_s = 1.0;  // eps of the Coulomb law [mm/s]
   double runaway_fraction = 0.5;           // max penetration / layer thickness [-]
   double friction_override = -1.0;         // >= 0 replaces the material's friction [-]
@@ -67,8 +66,8 @@ struct Config {
   std::array<std::string, 6> tibia_dofs;
   double axial_offset_mm = 5.0;            // medial offset of the axial load line [mm]
   double tibia_pivot_medial_mm = 5.0;      // medial offset of the tibial VV (and IE) axis [mm]
-  double femur_mass_kg = 4.0, tibia_mass_kg = 2.0;
-  double femur_inertia_kgm2 = 0.004, tibia_inertia_kgm2 = 0.004;  // rotational [kg m^2]
+  double femur_mass_kg = 8.0, tibia_mass_kg = 2.0;
+  double femur_inertia_kgm2 = 0.01, tibia_inertia_kgm2 = 0.01;  // rotational [kg m^2]
   double ap_damping_Ns_per_m = 100.0, ml_damping_Ns_per_m = 100.0, is_damping_Ns_per_m = 0.0;
   double ie_damping_Nms_per_rad = 0.3, vv_damping_Nms_per_rad = 0.3;
   // restraint (spring-gap, physics.md section 2); preset-dependent defaults

@@ -76,7 +76,8 @@ void run(const RunArgs& a) {
   summary["cycles"] = config.cycles;
   summary["seconds"] = seconds;
   summary["seconds_per_cycle"] = seconds / config.cycles;
-  summary["candidate_refreshes"] = result.candidate_refreshes;
+  summary["element_evaluations_per_step"] =
+      static_cast<double>(result.evaluations) / std::max(1L, result.steps);
   if (result.status != engine::StepStatus::kOk) {
     // keep what was complete, under names that cannot be mistaken for a finished run
     io::write_csv(out / "kinematics.partial.csv", table);

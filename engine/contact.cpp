@@ -70,7 +70,9 @@ void calc_contact(const Model& model, const State& state, Data& data) {
     const double p_elastic = ef_pressure(cm.law, cm.foundation_modulus, d, h);
     const double p_damping =
         cm.damping_beta * ef_stiffness(cm.law, cm.foundation_modulus, d, h) * closing;
-    const double p = std::max(0.0, p_elastic + p_damping);
+    // the damper may at most double or cancel the elastic pressure: an impact (a fast closing
+    // speed) must not produce a force spike that the stable step does not cover
+    const double p = p_elastic + std::clamp(p_damping, -p_elastic, p_elastic);
     const Eigen::Vector3d traction = p * n_W + friction_traction(cm.friction, p, v_slip,
                                                                  cm.slip_regularization);
     data.pressure[e] = p_elastic;

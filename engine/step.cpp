@@ -124,6 +124,19 @@ void integrate_carriage(const Model& model, int c, State& state, const Data& dat
   }
 }
 
+// a carriage far from where it started has lost the implant (e.g. fell through or flipped)
+bool is_runaway(const Model& model, const Data& data) {
+  for (int c = 0; c < 2; ++c) {
+    for (int i = 0; i < kNumDof; ++i) {
+      const double excursion = std::abs(data.q[c][i] - model.carriages[c].dofs[i].initial);
+      const bool prescribed = model.carriages[c].dofs[i].mode == DofMode::kPrescribed;
+      if (prescribed) continue;
+      if (is_rotation(i) ? excursion > 60.0 * M_PI / 180.0 : excursion > 0.05) return true;
+    }
+  }
+  return false;
+}
+
 bool is_finite(const State& state) {
   for (const CarriageState& cs : state.carriages) {
     if (!cs.pivot_W.allFinite() || !cs.R_WB.allFinite()) return false;
@@ -141,6 +154,9 @@ const char* to_string(StepStatus status) {
       return "ok";
     case StepStatus::kNotFinite:
       return "a position or velocity became NaN or infinite";
+    case StepStatus::kRunawayMotion:
+      return "runaway motion: a carriage moved more than 50 mm or tilted more than 60 deg from "
+             "its start (lost contact, or the rig is unstable)";
     case StepStatus::kRunawayPenetration:
       return "runaway penetration: the femoral component sank through the insert's elastic "
              "layer";
@@ -169,6 +185,7 @@ StepStatus step(const Model& model, State& state, Data& data) {
   ++state.step;
   // checks: NaN, runaway penetration
   if (!is_finite(state)) return StepStatus::kNotFinite;
+  if (is_runaway(model, data)) return StepStatus::kRunawayMotion;
   // beyond 90 % of the distance field's exact band a deeper overlap could not be measured
   if (data.contact.max_penetration_ratio > model.contact.runaway_fraction ||
       data.contact.max_penetration > 0.9 * model.femur_sdf.band) {

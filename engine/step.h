@@ -7,7 +7,7 @@
 
 namespace kneesim::engine {
 
-enum class StepStatus { kOk, kNotFinite, kRunawayPenetration };
+enum class StepStatus { kOk, kNotFinite, kRunawayPenetration, kRunawayMotion };
 
 const char* to_string(StepStatus status);
 

@@ -73,8 +73,13 @@ loads::Waveform make_gait(const Config& c) {
   conv.ie_sign = c.ie_sign;
   gait = loads::apply_conventions(gait, conv);
   if (c.kinematics_file.empty()) return gait;
+  // the measured pose about the femoral reference point the engine uses (the FE axis centre)
+  const Eigen::Vector3d p_FR_F =
+      c.implant_kind == "mesh"
+          ? Eigen::Vector3d(Eigen::Vector3d(c.femur_origin_mm[0], c.femur_origin_mm[1], c.femur_origin_mm[2]) * kMm)
+          : Eigen::Vector3d::Zero();
   const loads::Waveform measured =
-      loads::to_waveform(loads::read_kinematics(resolve_path(c, c.kinematics_file)));
+      loads::to_waveform(loads::read_kinematics(resolve_path(c, c.kinematics_file), p_FR_F));
   std::vector<std::string> names;
   std::vector<std::vector<double>> columns;
   std::vector<double> pct;
@@ -86,7 +91,14 @@ loads::Waveform make_gait(const Config& c) {
     for (double p : pct) col.push_back(w.value(ch, p));
     columns.push_back(col);
   };
-  for (int ch = 0; ch < measured.channel_count(); ++ch) add(measured, ch);
+  for (int ch = 0; ch < measured.channel_count(); ++ch) {
+    add(measured, ch);
+    // a measured cycle rarely closes: remove the linear drift between 0 and 100 % so that a
+    // prescribed DOF does not jump at the cycle boundary (a jump is an infinite velocity)
+    std::vector<double>& col = columns.back();
+    const double drift = col.back() - col.front();
+    for (size_t i = 0; i < col.size(); ++i) col[i] -= drift * pct[i] / 100.0;
+  }
   for (int ch = 0; ch < gait.channel_count(); ++ch) {
     if (measured.channel(gait.channel_name(ch)) < 0) add(gait, ch);
   }

@@ -6,6 +6,7 @@
 
 #include "engine/errors.h"
 #include "engine/simulate.h"
+#include "loads/iso14243/kinematics.h"
 #include "models/build_model.h"
 #include "tools/io/json_out.h"
 #include "tools/io/plot.h"
@@ -32,10 +33,19 @@ void clear_outputs(const std::filesystem::path& dir) {
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
     if (name == "kinematics.csv" || name == "summary.json" || name == "kinematics.png" ||
-        name == "kinematics.partial.csv" || name.rfind("pressure_", 0) == 0) {
+        name == "kinematics.partial.csv" || name == "measured_kinematics.csv" || name.rfind("pressure_", 0) == 0) {
       fs::remove(e.path());
     }
   }
+}
+
+io::Table make_measured_table(const loads::MeasuredKinematics& k) {
+  io::Table t;
+  t.columns = {"gait_pct", "flexion_deg", "ap_mm", "ie_deg"};
+  for (size_t i = 0; i < k.size(); ++i) {
+    t.add_row({k.gait_pct[i], k.flexion_deg[i], k.ap_mm[i], k.ie_deg[i]});
+  }
+  return t;
 }
 
 void run(const RunArgs& a) {
@@ -44,7 +54,7 @@ void run(const RunArgs& a) {
   for (const auto& s : a.sets) overrides.push_back(models::parse_override(s));
   models::Config config = models::load_config(a.config, overrides);
   if (a.cycles > 0) config.cycles = a.cycles;
-  if (!a.measured.empty()) config.measured_kinematics = a.measured;
+  if (!a.measured.empty()) config.measured_kinematics = fs::absolute(a.measured).string();
   const fs::path out(a.out);
   models::BuiltModel built = models::build_model(config);
   const engine::Model& model = built.model;
@@ -102,8 +112,16 @@ void run(const RunArgs& a) {
   std::vector<std::string> plot_args = {(out / "kinematics.csv").string(),
                                         (out / "kinematics.png").string()};
   if (!config.measured_kinematics.empty()) {
+    // the measured pose is reported about the same femoral reference point as the simulation
+    const Eigen::Vector3d p_FR_F = Eigen::Vector3d(config.femur_origin_mm[0],
+                                                   config.femur_origin_mm[1],
+                                                   config.femur_origin_mm[2]) * 1e-3;
+    const loads::MeasuredKinematics measured = loads::read_kinematics(
+        models::resolve_path(config, config.measured_kinematics),
+        config.implant_kind == "mesh" ? p_FR_F : Eigen::Vector3d::Zero());
+    io::write_csv(out / "measured_kinematics.csv", make_measured_table(measured));
     plot_args.push_back("--measured");
-    plot_args.push_back(models::resolve_path(config, config.measured_kinematics).string());
+    plot_args.push_back((out / "measured_kinematics.csv").string());
   }
   io::run_plot("kinematics.py", plot_args);
   io::write_json(out / "summary.json", summary);  // last: its presence marks a complete run

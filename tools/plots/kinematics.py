@@ -1,9 +1,10 @@
 """AP and IE of the tibial carriage over the gait cycle, with an optional measured overlay.
 
-usage: kinematics.py KINEMATICS.csv OUT.png [--measured FILE(.csv|.sto)]
+usage: kinematics.py KINEMATICS.csv OUT.png [--measured MEASURED.csv]
+(the measured CSV has gait_pct, ap_mm, ie_deg in the project convention; `kneesim run`
+writes it from a CSV or .sto input)
 """
 import csv
-import math
 import sys
 
 
@@ -11,24 +12,6 @@ def read_csv(path):
     with open(path) as f:
         rows = list(csv.DictReader(f))
     return {k: [float(r[k]) for r in rows] for k in rows[0]}
-
-
-def read_measured(path):
-    if not path.endswith(".sto"):
-        return read_csv(path)
-    # Grand Challenge DM .sto (data README): x = posterior (m), rotation about y = IE (rad),
-    # frame turned 180 deg about y from the project's; report insert-relative AP and IE
-    with open(path) as f:
-        lines = f.read().splitlines()
-    start = next(i for i, l in enumerate(lines) if l.strip() == "endheader") + 1
-    header = lines[start].split()
-    data = [list(map(float, l.split())) for l in lines[start + 1:] if l.strip()]
-    col = {h: [r[i] for r in data] for i, h in enumerate(header)}
-    return {
-        "gait_pct": col["time"],
-        "ap_mm": [-1e3 * v for v in col["knee_ant_r"]],
-        "ie_deg": [math.degrees(v) for v in col["knee_add_r"]],
-    }
 
 
 def main():
@@ -40,7 +23,7 @@ def main():
     measured = None
     if "--measured" in args:
         i = args.index("--measured")
-        measured = read_measured(args[i + 1])
+        measured = read_csv(args[i + 1])
         del args[i:i + 2]
     sim = read_csv(args[0])
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)

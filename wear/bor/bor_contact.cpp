@@ -53,7 +53,7 @@ BorContact solve_unworn(const BorRig& rig, double load) {
     r[0] = c_f * rc2w * segment_factor(x[0]) - load;
   };
   engine::NonlinearOptions opt;
-  opt.residual_tol = 1e-12;
+  opt.residual_tol = 1e-11;
   const double t0 = theta_for_volume(rc2w, load / c_f);
   opt.x_scale = Eigen::VectorXd::Constant(1, t0);
   opt.f_scale = Eigen::VectorXd::Constant(1, 1.0 / load);
@@ -102,7 +102,7 @@ BorContact solve_bor_contact(const BorRig& rig, double load, double volume,
   const BorContact g = (guess && guess->scar_curvature > 0.0) ? *guess
                                                                : worn_guess(rig, load, volume);
   engine::NonlinearOptions opt;
-  opt.residual_tol = 1e-12;
+  opt.residual_tol = 1e-11;
   opt.x_scale = Eigen::Vector3d(g.theta, g.theta_scar, g.scar_curvature);
   opt.constraints = Eigen::VectorXi::Constant(3, static_cast<int>(engine::Positivity::positive));
   auto res = engine::solve_nonlinear(
@@ -130,28 +130,35 @@ BorContact solve_bor_contact(const BorRig& rig, double load, double volume,
   return c;
 }
 
-BorContactTable::BorContactTable(const BorRig& rig, double load, double max_volume, int points)
-    : rig_(rig), load_(load), points_(std::max(points, 3)) {
-  build(max_volume);
+BorContactTable::BorContactTable(const BorRig& rig, double load, double base_volume, int points)
+    : rig_(rig), load_(load), base_volume_(base_volume), points_(std::max(points, 3)) {
+  while (static_cast<int>(volumes_.size()) < points_) append_node();
 }
 
-void BorContactTable::build(double max_volume) {
-  volumes_.assign(points_, 0.0);
-  states_.assign(points_, BorContact{});
-  for (int i = 0; i < points_; ++i) {
-    const double s = static_cast<double>(i) / (points_ - 1);
-    volumes_[i] = max_volume * s * s;
-    states_[i] = solve_bor_contact(rig_, load_, volumes_[i],
-                                   (i > 1) ? &states_[i - 1] : nullptr);
+void BorContactTable::append_node() {
+  const size_t i = volumes_.size();
+  if (static_cast<int>(i) >= kMaxNodes) {
+    throw std::runtime_error("block-on-ring contact table exceeds its node limit (worn volume "
+                             "far beyond the test range)");
   }
+  const double s = static_cast<double>(i) / (points_ - 1);
+  const double v = base_volume_ * s * s;
+  const BorContact c = solve_bor_contact(rig_, load_, v, (i > 1) ? &states_[i - 1] : nullptr);
+  volumes_.push_back(v);
+  states_.push_back(c);
+}
+
+void BorContactTable::extend_to(double volume) {
+  while (volumes_.back() < volume) append_node();
 }
 
 BorContact BorContactTable::at(double volume) {
-  if (volume > volumes_.back()) build(2.0 * volume);
   if (volume <= 0.0) return states_.front();
-  // quadratic grid: index from sqrt(V / V_max)
-  const double u = std::sqrt(volume / volumes_.back()) * (points_ - 1);
-  const int i = std::min(static_cast<int>(u), points_ - 2);
+  extend_to(volume);
+  // quadratic grid: index from sqrt(V / V_base)
+  const double u = std::sqrt(volume / base_volume_) * (points_ - 1);
+  const int last = static_cast<int>(volumes_.size()) - 2;
+  const int i = std::min(static_cast<int>(u), last);
   const double f = (volume - volumes_[i]) / (volumes_[i + 1] - volumes_[i]);
   const BorContact& a = states_[i];
   const BorContact& b = states_[i + 1];

@@ -42,23 +42,32 @@ double segment_factor(double theta);
 BorContact solve_bor_contact(const BorRig& rig, double load, double volume,
                              const BorContact* guess = nullptr);
 
-// geometry against worn volume for one load, on a grid solved with KINSOL
+// geometry against worn volume for one load, on a grid solved with KINSOL. The grid is the
+// fixed sequence V_i = V_base (i / (points - 1))^2 (finer near V = 0, where depth and width
+// change fastest), extended by appending nodes when a larger volume is asked for, so that an
+// interpolated value never depends on which volumes were requested before (determinism).
 class BorContactTable {
  public:
-  BorContactTable(const BorRig& rig, double load, double max_volume, int points = 241);
-  // interpolated geometry at V [m^3]; extends the grid (KINSOL) when V exceeds it
+  BorContactTable(const BorRig& rig, double load, double base_volume, int points = 241);
+  // interpolated geometry at V [m^3]; extends the grid (KINSOL) when V exceeds it; throws
+  // std::runtime_error beyond kMaxNodes nodes or when the contact cannot be solved
   BorContact at(double volume);
+  // appends nodes until the grid reaches V [m^3]
+  void extend_to(double volume);
   double load() const { return load_; }
   double max_volume() const { return volumes_.back(); }
   const std::vector<double>& volumes() const { return volumes_; }
   const std::vector<BorContact>& states() const { return states_; }
 
+  static constexpr int kMaxNodes = 20000;
+
  private:
-  void build(double max_volume);
+  void append_node();
   BorRig rig_;
   double load_;                     // F [N]
-  int points_;                      // grid points [-]
-  std::vector<double> volumes_;     // grid, quadratic spacing (finer near V = 0) [m^3]
+  double base_volume_;              // V_base [m^3]
+  int points_;                      // nodes up to V_base [-]
+  std::vector<double> volumes_;     // grid [m^3]
   std::vector<BorContact> states_;  // solved geometry at each grid volume
 };
 

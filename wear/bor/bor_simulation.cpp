@@ -109,7 +109,7 @@ std::vector<BorRow> simulate_bor_table(BorContactTable& table, const BorRig& rig
       }
       if (n_of_v.back() >= n_max) break;
       if (attempt > 40) throw std::runtime_error("pressure-law wear volume does not converge");
-      table.at(2.0 * table.max_volume());  // doubles the grid's range
+      table.extend_to(2.0 * table.max_volume());  // doubles the grid's range
     }
     const auto& vs = table.volumes();
     for (size_t j = 0; j < cycles.size(); ++j) {

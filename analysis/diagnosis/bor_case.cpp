@@ -1,0 +1,241 @@
+#include "analysis/diagnosis/bor_case.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "analysis/diagnosis/measured_csv.h"
+#include "engine/errors.h"
+#include "wear/bor/bor_simulation.h"
+
+namespace kneesim::diagnosis {
+namespace {
+
+constexpr const char* kColumns =
+    "load_N, cycles, volume_mm3 (optional: depth_mm, specimen)";
+
+bor::BorWearLaw law_of(Effect e) {
+  switch (e) {
+    case Effect::running_in: return bor::BorWearLaw::running_in;
+    case Effect::pressure_dependent_wear: return bor::BorWearLaw::pressure_dependent_wear;
+    case Effect::creep: return bor::BorWearLaw::creep;
+    case Effect::none:
+    case Effect::cross_shear:
+    case Effect::friction: break;
+  }
+  return bor::BorWearLaw::archard;
+}
+
+double parse_load(const std::string& group) { return std::strtod(group.c_str(), nullptr); }
+
+// shared state of the case's lambdas: one contact table per load
+struct BorModel {
+  bor::BorRig rig;
+  double reference_pressure = 0.0;  // p_ref [Pa]
+  std::map<std::string, std::unique_ptr<bor::BorContactTable>> tables;
+  MeasuredData measured;  // a copy, so the case can be moved or copied freely
+};
+
+}  // namespace
+
+std::string bor_load_label(double load) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g N", load);
+  return buf;
+}
+
+MeasuredData read_bor_measured(const std::string& path) {
+  const CsvTable t = read_csv_table(path);
+  const int c_load = t.require("load_N", kColumns);
+  const int c_cycles = t.require("cycles", kColumns);
+  const int c_volume = t.require("volume_mm3", kColumns);
+  const int c_depth = t.column("depth_mm");
+  const int c_specimen = t.column("specimen");
+  MeasuredData d;
+  d.source = path;
+  d.x_name = "cycles";
+  for (size_t r = 0; r < t.cells.size(); ++r) {
+    Measurement m;
+    m.group = bor_load_label(t.number(r, c_load, 1e-3, 1e4));
+    m.specimen = (c_specimen >= 0) ? t.cells[r][static_cast<size_t>(c_specimen)] : "";
+    m.x = t.number(r, c_cycles, 0.0, 1e9);
+    m.row = t.lines[r];
+    m.quantity = "volume_mm3";
+    m.value = t.number(r, c_volume, 0.0, 1e6);
+    d.rows.push_back(m);
+    if (c_depth >= 0 && !t.empty(r, c_depth)) {
+      m.quantity = "depth_mm";
+      m.value = t.number(r, c_depth, 0.0, 1e3);
+      d.rows.push_back(m);
+    }
+  }
+  // volume rows first, so the RMSE carries mm^3
+  std::stable_sort(d.rows.begin(), d.rows.end(), [](const Measurement& a, const Measurement& b) {
+    return a.quantity == "volume_mm3" && b.quantity != "volume_mm3";
+  });
+  return d;
+}
+
+DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
+  DiagnosisCase c;
+  c.name = "bor";
+  c.measured = std::move(data);
+  const auto& rows = c.measured.rows;
+  std::set<std::string> loads;
+  std::map<std::string, std::set<std::string>> specimens;
+  bool has_depth = false;
+  double max_volume = 0.0;
+  for (const auto& m : rows) {
+    loads.insert(m.group);
+    specimens[m.group].insert(m.specimen);
+    has_depth = has_depth || m.quantity == "depth_mm";
+    if (m.quantity == "volume_mm3") max_volume = std::max(max_volume, m.value);
+  }
+  if (loads.size() < 2) {
+    throw InputError(c.measured.source + ": rows " + std::to_string(rows.front().row) + "-" +
+                     std::to_string(rows.back().row) + ", column load_N: every row has load " +
+                     *loads.begin() + "; the block-on-ring diagnosis needs two or more loads (it "
+                     "calibrates at one and judges the model at the others).");
+  }
+
+  auto model = std::make_shared<BorModel>();
+  model->rig = options.rig;
+  model->measured = c.measured;
+  model->reference_pressure =
+      bor::solve_bor_contact(options.rig, options.calibration_load, 0.0).mean_pressure;
+  for (const auto& g : loads) {
+    model->tables[g] = std::make_unique<bor::BorContactTable>(
+        options.rig, parse_load(g), std::max(2.0 * max_volume, 0.1) * 1e-9);
+  }
+
+  c.baseline_model = "steady-state Archard V = k_D F S N, k_D from the steady-state slope "
+                     "(cycles >= " + std::to_string(static_cast<long>(options.steady_state_from)) +
+                     ") at " + bor_load_label(options.calibration_load);
+  c.baseline_params = {{"k_mm3_per_Nmm", "steady-state wear factor k_D [mm^3/(N mm)]", 1e-13,
+                        1e-5, 4.1e-10, true, {}}};
+  c.candidates = {Effect::running_in, Effect::pressure_dependent_wear};
+  if (has_depth) c.candidates.push_back(Effect::creep);
+
+  // forward model: one table-driven simulation per load for the requested rows
+  const std::shared_ptr<const BorModel> shared = model;
+  auto simulate = [model](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep,
+                          const std::string& group, const std::vector<double>& cycles) {
+    bor::BorWearParams p;
+    p.k = b[0] * 1e-6;
+    p.reference_pressure = model->reference_pressure;
+    const auto names = bor::wear_law_param_names(law_of(e));
+    for (size_t i = 0, j = 0; i < names.size(); ++i) {
+      if (names[i] == "reference_pressure_MPa") continue;
+      bor::set_wear_param(p, names[i], ep[static_cast<Eigen::Index>(j++)], "diagnosis fit");
+    }
+    return bor::simulate_bor_table(*model->tables.at(group), model->rig, law_of(e), p, cycles);
+  };
+  c.predict = [simulate, shared](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep,
+                                   const std::vector<int>& idx) {
+    const MeasuredData* measured = &shared->measured;
+    std::map<std::string, std::vector<int>> by_group;
+    for (int i : idx) by_group[measured->rows[i].group].push_back(i);
+    std::map<int, double> out;
+    for (const auto& [g, members] : by_group) {
+      std::vector<double> cycles;
+      for (int i : members) cycles.push_back(measured->rows[i].x);
+      std::vector<bor::BorRow> sim;
+      try {
+        sim = simulate(e, b, ep, g, cycles);
+      } catch (const std::runtime_error&) {
+        // parameters far outside the physical range (e.g. a scar deeper than the ring can
+        // carry): no prediction, so the fit rejects the step
+        return Eigen::VectorXd::Constant(static_cast<Eigen::Index>(idx.size()), NAN).eval();
+      }
+      for (size_t j = 0; j < members.size(); ++j) {
+        const auto& m = measured->rows[members[j]];
+        out[members[j]] = (m.quantity == "depth_mm") ? sim[j].depth * 1e3 : sim[j].volume * 1e9;
+      }
+    }
+    Eigen::VectorXd v(static_cast<Eigen::Index>(idx.size()));
+    for (size_t i = 0; i < idx.size(); ++i) v[static_cast<Eigen::Index>(i)] = out[idx[i]];
+    return v.eval();
+  };
+
+  // practitioner's calibration: slope of volume over the steady-state points
+  const bor::BorRig rig = options.rig;
+  const double cal_load = options.calibration_load, ss_from = options.steady_state_from;
+  c.calibrate_baseline = [shared, rig, cal_load, ss_from](const std::vector<int>& train) {
+    const MeasuredData* measured = &shared->measured;
+    // the calibration load, or the training load nearest to it
+    double load = -1.0;
+    for (int i : train) {
+      const double l = parse_load(measured->rows[i].group);
+      if (load < 0.0 || std::abs(l - cal_load) < std::abs(load - cal_load)) load = l;
+    }
+    std::vector<double> xs, ys;
+    for (int pass = 0; pass < 2 && xs.size() < 2; ++pass) {
+      xs.clear();
+      ys.clear();
+      for (int i : train) {
+        const auto& m = measured->rows[i];
+        if (m.quantity != "volume_mm3" || parse_load(m.group) != load) continue;
+        if (pass == 0 ? m.x < ss_from : m.x <= 0.0) continue;
+        xs.push_back(m.x);
+        ys.push_back(m.value);
+      }
+    }
+    double slope = 0.0;
+    const double n = static_cast<double>(xs.size());
+    double mx = 0, my = 0;
+    for (size_t i = 0; i < xs.size(); ++i) mx += xs[i] / n, my += ys[i] / n;
+    double sxx = 0, sxy = 0;
+    for (size_t i = 0; i < xs.size(); ++i) sxx += (xs[i] - mx) * (xs[i] - mx), sxy += (xs[i] - mx) * (ys[i] - my);
+    slope = (sxx > 0.0) ? sxy / sxx : (mx > 0.0 ? my / mx : 0.0);  // [mm^3/cycle]
+    const double k = slope / (load * bor::sliding_distance_per_cycle(rig) * 1e3);
+    return Eigen::VectorXd::Constant(1, std::clamp(k, 1e-13, 1e-5));
+  };
+
+  // held-out split rule
+  bool per_specimen = true;
+  for (const auto& [g, s] : specimens) per_specimen = per_specimen && s.size() >= 2;
+  std::map<std::string, std::vector<int>> groups;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& m = rows[i];
+    groups[per_specimen ? m.group + "/" + m.specimen : m.group].push_back(static_cast<int>(i));
+  }
+  c.split_rule = per_specimen ? "leave-one-specimen-out" : "leave-one-load-out";
+  for (const auto& [key, members] : groups) {
+    Fold f;
+    f.name = (per_specimen ? "specimen " : "load ") + key;
+    f.test = members;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      if (std::find(members.begin(), members.end(), static_cast<int>(i)) == members.end()) {
+        f.train.push_back(static_cast<int>(i));
+      }
+    }
+    c.folds.push_back(std::move(f));
+  }
+
+  // dense curves for plots
+  double max_cycles = 0.0;
+  for (const auto& m : rows) max_cycles = std::max(max_cycles, m.x);
+  c.curves = [simulate, loads, has_depth, max_cycles](Effect e, const Eigen::VectorXd& b,
+                                                      const Eigen::VectorXd& ep) {
+    std::vector<double> cycles;
+    for (int i = 0; i <= 100; ++i) cycles.push_back(max_cycles * 1.05 * i / 100.0);
+    std::vector<CurvePoint> out;
+    for (const auto& g : loads) {
+      const auto sim = simulate(e, b, ep, g, cycles);
+      for (const auto& r : sim) {
+        out.push_back({g, "volume_mm3", r.cycles, r.volume * 1e9});
+        if (has_depth) out.push_back({g, "depth_mm", r.cycles, r.depth * 1e3});
+      }
+    }
+    return out;
+  };
+
+  c.effect_params = [](Effect e) { return effect_info(e).params; };
+  return c;
+}
+
+}  // namespace kneesim::diagnosis

@@ -1,0 +1,348 @@
+#include "analysis/diagnosis/diagnose.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "analysis/diagnosis/fit.h"
+#include "engine/errors.h"
+
+namespace kneesim::diagnosis {
+
+std::vector<ParamSpec> case_effect_params(const DiagnosisCase& c, Effect effect) {
+  if (effect == Effect::none) return {};
+  return c.effect_params ? c.effect_params(effect) : effect_info(effect).params;
+}
+
+namespace {
+
+// The measurements with their specimen structure. Specimens of one material scatter in wear
+// factor (multiplicatively), so the residuals of one specimen are correlated; when specimens
+// are given, every model is fitted with a specimen random effect: y_s = f_s (1 + u_s) + e,
+// u_s ~ N(0, tau^2), whose covariance sigma^2 I + tau^2 g g^T (g = weighted baseline curve of
+// the specimen) is whitened exactly (rank-one update). Without it, AICc treats the 4-8
+// correlated points of a specimen as independent and mistakes specimen scatter between loads
+// for a pressure effect.
+struct Problem {
+  const DiagnosisCase& c;
+  Eigen::VectorXd y;                       // measured values
+  Eigen::VectorXd weights;                 // per measurement
+  std::vector<std::vector<int>> clusters;  // specimens (rows), or one row each
+  Eigen::VectorXd g;                       // weighted baseline prediction per row
+  bool random_effect = false;              // specimens given: fit tau too
+};
+
+Eigen::VectorXd initial_of(const std::vector<ParamSpec>& specs, const Eigen::VectorXd& baseline) {
+  Eigen::VectorXd p(static_cast<Eigen::Index>(specs.size()));
+  for (size_t i = 0; i < specs.size(); ++i) {
+    p[static_cast<Eigen::Index>(i)] =
+        (i < static_cast<size_t>(baseline.size())) ? baseline[static_cast<Eigen::Index>(i)]
+                                                    : specs[i].initial;
+  }
+  return p;
+}
+
+Eigen::VectorXd predict(const Problem& pb, Effect e, const Eigen::VectorXd& params,
+                        const std::vector<int>& rows) {
+  const Eigen::Index nb = static_cast<Eigen::Index>(pb.c.baseline_params.size());
+  return pb.c.predict(e, params.head(nb), params.tail(params.size() - nb), rows);
+}
+
+std::vector<int> flatten(const std::vector<std::vector<int>>& clusters) {
+  std::vector<int> rows;
+  for (const auto& cl : clusters) rows.insert(rows.end(), cl.begin(), cl.end());
+  return rows;
+}
+
+// whitened residuals of `clusters` (rows may repeat across clusters: bootstrap draws) at
+// variance ratio rho = tau^2 / sigma^2, with measured values y
+Eigen::VectorXd whitened(const Problem& pb, const Eigen::VectorXd& y, Effect e,
+                         const Eigen::VectorXd& params,
+                         const std::vector<std::vector<int>>& clusters, double rho) {
+  const auto rows = flatten(clusters);
+  Eigen::VectorXd r = predict(pb, e, params, rows);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    r[static_cast<Eigen::Index>(i)] = (r[static_cast<Eigen::Index>(i)] - y[rows[i]]) * pb.weights[rows[i]];
+  }
+  if (rho <= 0.0) return r;
+  Eigen::Index at = 0;
+  for (const auto& cl : clusters) {
+    const auto n = static_cast<Eigen::Index>(cl.size());
+    Eigen::VectorXd gs(n);
+    for (Eigen::Index i = 0; i < n; ++i) gs[i] = pb.g[cl[static_cast<size_t>(i)]];
+    const double g2 = gs.squaredNorm();
+    if (g2 > 0.0) {
+      const double c = 1.0 - 1.0 / std::sqrt(1.0 + rho * g2);
+      const Eigen::VectorXd gh = gs / std::sqrt(g2);
+      auto seg = r.segment(at, n);
+      seg -= c * gh.dot(seg) * gh;
+    }
+    at += n;
+  }
+  return r;
+}
+
+double log_det(const Problem& pb, const std::vector<std::vector<int>>& clusters, double rho) {
+  double ld = 0.0;
+  for (const auto& cl : clusters) {
+    double g2 = 0.0;
+    for (int i : cl) g2 += pb.g[i] * pb.g[i];
+    ld += std::log1p(rho * g2);
+  }
+  return ld;
+}
+
+FitResult fit_clusters(const Problem& pb, const Eigen::VectorXd& y, Effect e,
+                       const std::vector<ParamSpec>& specs, const Eigen::VectorXd& start,
+                       const std::vector<std::vector<int>>& clusters, double rho, bool multi) {
+  auto residuals = [&](const Eigen::VectorXd& p) { return whitened(pb, y, e, p, clusters, rho); };
+  return fit_least_squares(residuals, specs, start, multi);
+}
+
+// clusters restricted to `rows`
+std::vector<std::vector<int>> clusters_of(const Problem& pb, const std::vector<int>& rows) {
+  std::vector<char> in(pb.y.size(), 0);
+  for (int i : rows) in[static_cast<size_t>(i)] = 1;
+  std::vector<std::vector<int>> out;
+  for (const auto& cl : pb.clusters) {
+    std::vector<int> kept;
+    for (int i : cl) {
+      if (in[static_cast<size_t>(i)]) kept.push_back(i);
+    }
+    if (!kept.empty()) out.push_back(std::move(kept));
+  }
+  return out;
+}
+
+double weighted_rmse(const Problem& pb, const Eigen::VectorXd& pred) {
+  return std::sqrt((pred - pb.y).cwiseProduct(pb.weights).squaredNorm() /
+                   static_cast<double>(pb.y.size()));
+}
+
+std::vector<int> all_rows(size_t n) {
+  std::vector<int> rows(n);
+  for (size_t i = 0; i < n; ++i) rows[i] = static_cast<int>(i);
+  return rows;
+}
+
+// -2 log L (profiled over sigma) plus the AICc penalty; k counts sigma and tau too
+double aicc(double rss_white, double log_det_sum, int n, int k) {
+  return n * std::log(std::max(rss_white, 1e-300) / n) + log_det_sum + 2.0 * k +
+         2.0 * k * (k + 1.0) / (n - k - 1.0);
+}
+
+// variance ratios tried for the specimen random effect, relative to the mean |g_s|^2
+constexpr double kRhoGrid[] = {0.0,  0.05, 0.1,   0.2,   0.5,   1.0,   2.0,    5.0,   10.0,
+                               20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0, 5000.0};
+
+ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calibrated,
+                       const DiagnosisOptions& opt, double* rho_out) {
+  const DiagnosisCase& c = pb.c;
+  ModelFit m;
+  m.effect = e;
+  m.specs = c.baseline_params;
+  const auto eff = case_effect_params(c, e);
+  m.specs.insert(m.specs.end(), eff.begin(), eff.end());
+  m.model = std::string(effect_info(e).extension);
+  const auto rows = all_rows(c.measured.rows.size());
+  const int n = static_cast<int>(rows.size());
+  const int k = static_cast<int>(m.specs.size()) + 1 + (pb.random_effect ? 1 : 0);
+  if (n - k - 1 <= 0) {
+    throw InputError(c.measured.source + ": rows " + std::to_string(c.measured.rows.front().row) +
+                     "-" + std::to_string(c.measured.rows.back().row) + ", column " +
+                     c.measured.rows.front().quantity + ": " + std::to_string(n) +
+                     " measurements are fewer than the " + std::to_string(k + 2) +
+                     " needed to fit the " + std::to_string(m.specs.size()) +
+                     " parameters of candidate " + std::string(effect_name(e)) + ".");
+  }
+  // full data: multi-start at rho = 0, then profile the specimen variance ratio
+  double g2_mean = 0.0;
+  for (const auto& cl : pb.clusters) {
+    for (int i : cl) g2_mean += pb.g[i] * pb.g[i] / static_cast<double>(pb.clusters.size());
+  }
+  FitResult best = fit_clusters(pb, pb.y, e, m.specs, initial_of(m.specs, calibrated),
+                                pb.clusters, 0.0, opt.multi_start);
+  double best_rho = 0.0;
+  m.aicc = aicc(best.rss, 0.0, n, k);
+  if (pb.random_effect) {
+    Eigen::VectorXd start = best.params;
+    for (double s : kRhoGrid) {
+      if (s == 0.0) continue;
+      const double rho = s / g2_mean;
+      const FitResult fr = fit_clusters(pb, pb.y, e, m.specs, start, pb.clusters, rho, false);
+      const double a = aicc(fr.rss, log_det(pb, pb.clusters, rho), n, k);
+      start = fr.params;
+      if (a < m.aicc) {
+        m.aicc = a;
+        best = fr;
+        best_rho = rho;
+      }
+    }
+  }
+  *rho_out = best_rho;
+  m.params = best.params;
+  m.predictions = predict(pb, e, m.params, rows);
+  m.rss = (m.predictions - pb.y).cwiseProduct(pb.weights).squaredNorm();
+  m.rmse = weighted_rmse(pb, m.predictions);
+  // held-out: refit on each fold's training rows, warm-started at the full-data optimum
+  m.heldout_predictions = Eigen::VectorXd::Constant(n, NAN);
+  for (const Fold& f : c.folds) {
+    const FitResult fr =
+        fit_clusters(pb, pb.y, e, m.specs, m.params, clusters_of(pb, f.train), best_rho, false);
+    const Eigen::VectorXd p = predict(pb, e, fr.params, f.test);
+    for (size_t i = 0; i < f.test.size(); ++i) m.heldout_predictions[f.test[i]] = p[static_cast<Eigen::Index>(i)];
+  }
+  m.heldout_rmse = weighted_rmse(pb, m.heldout_predictions);
+  return m;
+}
+
+ModelFit practitioner_baseline(const Problem& pb) {
+  const DiagnosisCase& c = pb.c;
+  ModelFit m;
+  m.effect = Effect::none;
+  m.model = c.baseline_model;
+  m.specs = c.baseline_params;
+  const auto rows = all_rows(c.measured.rows.size());
+  m.params = c.calibrate_baseline(rows);
+  const Eigen::VectorXd none;
+  m.predictions = c.predict(Effect::none, m.params, none, rows);
+  m.rss = (m.predictions - pb.y).cwiseProduct(pb.weights).squaredNorm();
+  m.rmse = weighted_rmse(pb, m.predictions);
+  m.aicc = aicc(m.rss, 0.0, static_cast<int>(rows.size()), static_cast<int>(m.specs.size()) + 1);
+  m.heldout_predictions = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(rows.size()), NAN);
+  for (const Fold& f : c.folds) {
+    const Eigen::VectorXd p = c.predict(Effect::none, c.calibrate_baseline(f.train), none, f.test);
+    for (size_t i = 0; i < f.test.size(); ++i) m.heldout_predictions[f.test[i]] = p[static_cast<Eigen::Index>(i)];
+  }
+  m.heldout_rmse = weighted_rmse(pb, m.heldout_predictions);
+  return m;
+}
+
+// bootstrap of the chosen fit: specimens resampled within each condition when specimens are
+// given (their scatter dominates), otherwise residuals resampled within each quantity
+void bootstrap(const Problem& pb, ModelFit& m, double rho, const DiagnosisOptions& opt) {
+  if (opt.bootstrap <= 0) return;
+  const auto& rows = pb.c.measured.rows;
+  std::mt19937_64 rng(opt.seed);
+  const Eigen::Index np = m.params.size();
+  std::vector<std::vector<double>> samples(static_cast<size_t>(np));
+  std::map<std::string, std::vector<int>> by_key;  // quantity -> rows, or group -> clusters
+  if (pb.random_effect) {
+    for (size_t i = 0; i < pb.clusters.size(); ++i) {
+      by_key[rows[static_cast<size_t>(pb.clusters[i].front())].group].push_back(static_cast<int>(i));
+    }
+  } else {
+    for (size_t i = 0; i < rows.size(); ++i) by_key[rows[i].quantity].push_back(static_cast<int>(i));
+  }
+  const Eigen::VectorXd resid = pb.y - m.predictions;
+  for (int b = 0; b < opt.bootstrap; ++b) {
+    FitResult fr;
+    if (pb.random_effect) {
+      std::vector<std::vector<int>> draw;
+      for (const auto& [g, members] : by_key) {
+        std::uniform_int_distribution<size_t> pick(0, members.size() - 1);
+        for (size_t j = 0; j < members.size(); ++j) {
+          draw.push_back(pb.clusters[static_cast<size_t>(members[pick(rng)])]);
+        }
+      }
+      fr = fit_clusters(pb, pb.y, m.effect, m.specs, m.params, draw, rho, false);
+    } else {
+      Eigen::VectorXd y_star = m.predictions;
+      for (const auto& [q, members] : by_key) {
+        std::uniform_int_distribution<size_t> pick(0, members.size() - 1);
+        for (int i : members) y_star[i] += resid[members[pick(rng)]];
+      }
+      fr = fit_clusters(pb, y_star, m.effect, m.specs, m.params, pb.clusters, 0.0, false);
+    }
+    for (Eigen::Index j = 0; j < np; ++j) samples[static_cast<size_t>(j)].push_back(fr.params[j]);
+  }
+  m.ci_low.resize(np);
+  m.ci_high.resize(np);
+  for (Eigen::Index j = 0; j < np; ++j) {
+    auto& s = samples[static_cast<size_t>(j)];
+    std::sort(s.begin(), s.end());
+    auto quantile = [&s](double q) {
+      const double pos = q * static_cast<double>(s.size() - 1);
+      const size_t lo = static_cast<size_t>(pos);
+      const size_t hi = std::min(lo + 1, s.size() - 1);
+      return s[lo] + (pos - static_cast<double>(lo)) * (s[hi] - s[lo]);
+    };
+    m.ci_low[j] = quantile(0.025);
+    m.ci_high[j] = quantile(0.975);
+  }
+}
+
+}  // namespace
+
+DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto& rows = c.measured.rows;
+  if (rows.empty()) throw InputError(c.measured.source + ": row 2: the file holds no measurements.");
+  DiagnosisResult res;
+  // weights: quantities scaled into the first quantity's unit by their RMS magnitudes
+  std::map<std::string, double> sum_sq;
+  std::map<std::string, int> count;
+  for (const auto& r : rows) {
+    sum_sq[r.quantity] += r.value * r.value;
+    count[r.quantity] += 1;
+  }
+  res.rmse_unit = rows.front().quantity;
+  const double ref = std::sqrt(sum_sq[res.rmse_unit] / count[res.rmse_unit]);
+  Problem pb{c, Eigen::VectorXd(static_cast<Eigen::Index>(rows.size())),
+             Eigen::VectorXd(static_cast<Eigen::Index>(rows.size())), {}, {}, false};
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const double scale = std::sqrt(sum_sq[rows[i].quantity] / count[rows[i].quantity]);
+    pb.y[static_cast<Eigen::Index>(i)] = rows[i].value;
+    pb.weights[static_cast<Eigen::Index>(i)] = (scale > 0.0) ? ref / scale : 1.0;
+  }
+  res.weights = pb.weights;
+
+  // specimens: clusters of rows; without them every row is its own cluster
+  std::map<std::string, std::vector<int>> by_specimen;
+  bool specimens = true;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    specimens = specimens && !rows[i].specimen.empty();
+    by_specimen[rows[i].group + "/" + rows[i].specimen].push_back(static_cast<int>(i));
+  }
+  pb.random_effect = specimens && by_specimen.size() >= 4;
+  if (pb.random_effect) {
+    for (auto& [key, members] : by_specimen) pb.clusters.push_back(std::move(members));
+  } else {
+    for (size_t i = 0; i < rows.size(); ++i) pb.clusters.push_back({static_cast<int>(i)});
+  }
+
+  res.baseline = practitioner_baseline(pb);
+  pb.g = res.baseline.predictions.cwiseProduct(pb.weights);
+  std::vector<Effect> effects = {Effect::none};
+  effects.insert(effects.end(), c.candidates.begin(), c.candidates.end());
+  std::vector<double> rhos;
+  for (Effect e : effects) {
+    double rho = 0.0;
+    res.candidates.push_back(fit_candidate(pb, e, res.baseline.params, options, &rho));
+    rhos.push_back(rho);
+  }
+
+  // selection against "none"
+  const ModelFit& none = res.candidates.front();
+  res.selected = 0;
+  for (size_t i = 1; i < res.candidates.size(); ++i) {
+    const ModelFit& m = res.candidates[i];
+    const bool ic_ok = m.aicc < none.aicc - options.ic_threshold;
+    const bool heldout_ok = m.heldout_rmse < (1.0 - options.heldout_threshold) * none.heldout_rmse;
+    if (ic_ok && heldout_ok &&
+        (res.selected == 0 || m.heldout_rmse < res.extended().heldout_rmse)) {
+      res.selected = static_cast<int>(i);
+    }
+  }
+  bootstrap(pb, res.candidates[static_cast<size_t>(res.selected)],
+            rhos[static_cast<size_t>(res.selected)], options);
+  res.gain = (res.baseline.heldout_rmse > 0.0)
+                 ? 1.0 - res.extended().heldout_rmse / res.baseline.heldout_rmse
+                 : 0.0;
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+}  // namespace kneesim::diagnosis

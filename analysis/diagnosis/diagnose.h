@@ -1,0 +1,65 @@
+// The generic diagnosis: baseline as practitioners calibrate it, every candidate effect fitted
+// by weighted least squares, scored on held-out data (the case's split rule) and by AICc;
+// selection with thresholds so that data consistent with the baseline yield "none"; a
+// seeded residual bootstrap of the chosen fit; and the gain
+// 1 - heldout_rmse_extended / heldout_rmse_baseline.
+//
+// Residuals of different quantities (volume, depth) are weighted into the units of the first
+// quantity in the data by the ratio of their measured RMS values, so one RMSE summarises a
+// fit and is printed in a familiar unit (mm^3 for a volume-first case).
+//
+// Selection rule: a candidate is supported when its AICc is below the "none" candidate's by
+// more than ic_threshold AND its held-out RMSE is below (1 - heldout_threshold) times the
+// "none" candidate's; among supported candidates the lowest held-out RMSE wins. Both gates
+// are needed: AICc alone rewards in-sample fits of specimen scatter, held-out error alone is
+// noisy with few folds.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "analysis/diagnosis/diagnosis_case.h"
+
+namespace kneesim::diagnosis {
+
+struct DiagnosisOptions {
+  int bootstrap = 200;              // bootstrap resamples of the chosen fit [-]
+  std::uint64_t seed = 1;           // bootstrap seed [-]
+  double ic_threshold = 10.0;       // required AICc drop against "none" [-]
+  double heldout_threshold = 0.05;  // required relative held-out RMSE drop against "none" [-]
+  bool multi_start = true;          // multi-start the full-data fits
+};
+
+struct ModelFit {
+  Effect effect = Effect::none;
+  std::string model;                   // one line describing the model
+  std::vector<ParamSpec> specs;        // baseline specs followed by effect specs
+  Eigen::VectorXd params;              // [I/O units], specs.size()
+  Eigen::VectorXd ci_low, ci_high;     // bootstrap 95 % interval; empty when not bootstrapped
+  Eigen::VectorXd predictions;         // model at every measurement [quantity units]
+  Eigen::VectorXd heldout_predictions; // each row predicted by the fold that held it out
+  double rss = 0.0;                    // weighted residual sum of squares [rmse_unit^2]
+  double rmse = 0.0;                   // in-sample [rmse_unit]
+  double heldout_rmse = 0.0;           // held-out [rmse_unit]
+  double aicc = 0.0;                   // corrected Akaike information criterion [-]
+};
+
+struct DiagnosisResult {
+  std::string rmse_unit;            // quantity whose unit the RMSEs carry, e.g. "volume_mm3"
+  Eigen::VectorXd weights;          // residual weight per measurement [-]
+  ModelFit baseline;                // practitioner's calibration, not refitted
+  std::vector<ModelFit> candidates; // "none" first, then the case's candidates
+  int selected = 0;                 // index into candidates
+  double gain = 0.0;                // 1 - heldout extended / heldout baseline [-]
+  double seconds = 0.0;             // wall time [s]
+  const ModelFit& extended() const { return candidates[static_cast<size_t>(selected)]; }
+  Effect effect() const { return extended().effect; }
+};
+
+// runs the diagnosis; throws InputError when the data have fewer measurements than a
+// candidate needs (n > parameters + 2 for AICc)
+DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options = {});
+
+}  // namespace kneesim::diagnosis

@@ -1,0 +1,82 @@
+// The interface every diagnosis case implements (block-on-ring now; knee wear and kinematics
+// later). A case is four things: the measured data, a forward model parameterised by
+// baseline parameters plus the parameters of one effect, the practitioner's calibration rule
+// for the baseline, and the held-out split rule. diagnose() (diagnose.h) is generic over it:
+// it fits every candidate effect, scores it on held-out data and with an information
+// criterion, picks one or "none", bootstraps the chosen fit and measures the gain.
+//
+// Design: a struct of std::function rather than a virtual base class, so a case is assembled
+// from lambdas that capture its own state (tables, configs, a simulator) and can be built in a
+// few lines by a test. Parameters cross the interface in I/O units (mm^3/(N mm), cycles, s),
+// the units reports print; the case converts to SI for its simulator. Rejected: one generic
+// "fit everything" curve model inside the diagnosis, because the issue requires every effect
+// to be a real extension of the forward simulators.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "analysis/diagnosis/effect.h"
+
+namespace kneesim::diagnosis {
+
+struct Measurement {
+  std::string group;     // condition the forward model distinguishes (load, gait) e.g. "225 N"
+  std::string specimen;  // specimen id within the group; "" when the data have none
+  std::string quantity;  // measured quantity with unit, e.g. "volume_mm3", "depth_mm"
+  double x = 0.0;        // abscissa in I/O units (cycles, gait_pct)
+  double value = 0.0;    // measured value in the quantity's unit
+  int row = 0;           // 1-based line in the source file (header = line 1)
+};
+
+struct MeasuredData {
+  std::string source;                 // file name, for messages and reports
+  std::string x_name;                 // abscissa name with unit, e.g. "cycles"
+  std::vector<Measurement> rows;
+};
+
+// one held-out split: fit on `train`, predict `test` (indices into MeasuredData::rows)
+struct Fold {
+  std::string name;        // e.g. "specimen 225 N/s2" or "load 130 N"
+  std::vector<int> train;
+  std::vector<int> test;
+};
+
+// a model curve for plots
+struct CurvePoint {
+  std::string group;     // as Measurement::group
+  std::string quantity;  // as Measurement::quantity
+  double x = 0.0;        // abscissa [x_name unit]
+  double value = 0.0;    // model value [quantity unit]
+};
+
+struct DiagnosisCase {
+  std::string name;                    // case name, e.g. "bor"
+  MeasuredData measured;
+  std::string baseline_model;          // one line: the practitioner's model and calibration
+  std::vector<ParamSpec> baseline_params;  // refitted in every candidate (e.g. k)
+  std::vector<Effect> candidates;      // effects applicable to these data (without none)
+  std::string split_rule;              // e.g. "leave-one-specimen-out"
+  std::vector<Fold> folds;             // the held-out split rule, applied
+
+  // effect parameter specs for this case (bounds, starts); default: effect_info(e).params
+  std::function<std::vector<ParamSpec>(Effect)> effect_params;
+  // forward model: predictions for measurement indices `rows` [quantity units]
+  std::function<Eigen::VectorXd(Effect effect, const Eigen::VectorXd& baseline,
+                                const Eigen::VectorXd& effect_params,
+                                const std::vector<int>& rows)>
+      predict;
+  // the practitioner's calibration of the baseline parameters from the `train` rows
+  std::function<Eigen::VectorXd(const std::vector<int>& train)> calibrate_baseline;
+  // dense model curves for plots (optional)
+  std::function<std::vector<CurvePoint>(Effect effect, const Eigen::VectorXd& baseline,
+                                        const Eigen::VectorXd& effect_params)>
+      curves;
+};
+
+// effect parameter specs of `effect` in case `c` (its override or the library default)
+std::vector<ParamSpec> case_effect_params(const DiagnosisCase& c, Effect effect);
+
+}  // namespace kneesim::diagnosis

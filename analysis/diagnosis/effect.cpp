@@ -1,0 +1,96 @@
+#include "analysis/diagnosis/effect.h"
+
+#include <cmath>
+
+#include "engine/errors.h"
+
+namespace kneesim::diagnosis {
+namespace {
+
+const std::vector<EffectInfo>& library() {
+  static const std::vector<EffectInfo> lib = {
+      {Effect::none, "none",
+       "The measurements are consistent with the baseline model within their scatter.",
+       "baseline model with its parameters refitted to all data", DataNeed::none, {}},
+      {Effect::running_in, "running_in",
+       "New UHMWPE surfaces wear faster at first: machining marks and asperities are removed "
+       "and the surface layer reorients before a steady state is reached (Hussin 2024: high "
+       "rate over the first 50 000 cycles; simulator tests often exclude the first 0.5-1 Mc).",
+       "dV/dN = k F S (1 + a exp(-N / N_r))", DataNeed::none,
+       {{"running_in_excess", "initial extra wear-rate ratio a [-]", 1e-3, 1e3, 2.0, true,
+         {0.5, 5.0}},
+        {"running_in_cycles", "running-in decay constant N_r [cycles]", 1e3, 3e5, 15000.0, true,
+         {4000.0, 50000.0}}}},
+      {Effect::pressure_dependent_wear, "pressure_dependent_wear",
+       "UHMWPE's wear factor falls as the nominal contact pressure rises (Mazzucco & Spector "
+       "2003); Abdelgaied 2011 proposed wear proportional to contact area instead of load, "
+       "which is the exponent alpha = 1.",
+       "dV/dN = k (p / p_ref)^-alpha F S, p = mean contact pressure of the worn geometry",
+       DataNeed::two_loads,
+       {{"pressure_exponent", "exponent alpha of k ~ p^-alpha [-]", -3.0, 4.0, 0.5, false,
+         {1.5}}}},
+      {Effect::cross_shear, "cross_shear",
+       "UHMWPE wears far more under multidirectional sliding than under linear tracking: "
+       "sliding across the principal molecular orientation breaks the oriented fibrils; k rises "
+       "steeply with the cross-shear ratio, up to an order of magnitude (Wang 2001; Kang 2008).",
+       "k = k_linear (1 + g CS), CS = cross-shear ratio of the local sliding path",
+       DataNeed::kinematic_conditions,
+       {{"cross_shear_gain", "gain g of k on the cross-shear ratio [-]", 0.0, 50.0, 3.0, false,
+         {}}}},
+      {Effect::creep, "creep",
+       "Early penetration of UHMWPE is largely viscoelastic-plastic creep, not wear: depth "
+       "grows without volume loss and saturates in time (Zhao 2008), so a wear-only model "
+       "over-predicts depth from volume or under-predicts it from k.",
+       "depth = scar depth + phi delta_el (1 - exp(-t / tau)), volume unchanged",
+       DataNeed::depth_and_volume,
+       {{"creep_ratio", "saturated creep over elastic penetration phi [-]", 1e-3, 20.0, 0.5,
+         true, {2.0}},
+        {"creep_time_s", "creep time constant tau [s]", 60.0, 1e6, 3600.0, true,
+         {600.0, 20000.0}}}},
+      {Effect::friction, "friction",
+       "Force-controlled kinematics follow the friction at the articulation and the rig's "
+       "restraint; a friction coefficient different from the assumed one changes AP and IE "
+       "motion, and wear follows the kinematics (Dreyer 2023).",
+       "mu replaced by a fitted friction coefficient (kinematics and Sarkar factor)",
+       DataNeed::kinematics,
+       {{"friction_coefficient", "friction coefficient mu [-]", 0.0, 0.5, 0.07, false,
+         {0.02, 0.15}}}},
+  };
+  return lib;
+}
+
+}  // namespace
+
+const EffectInfo& effect_info(Effect effect) {
+  for (const auto& e : library()) {
+    if (e.effect == effect) return e;
+  }
+  return library().front();
+}
+
+const std::vector<Effect>& all_effects() {
+  static const std::vector<Effect> all = {Effect::none,        Effect::running_in,
+                                          Effect::pressure_dependent_wear,
+                                          Effect::cross_shear, Effect::creep,
+                                          Effect::friction};
+  return all;
+}
+
+std::string_view effect_name(Effect effect) { return effect_info(effect).name; }
+
+Effect parse_effect(const std::string& name, const std::string& source) {
+  std::string allowed;
+  for (const auto& e : library()) {
+    if (name == e.name) return e.effect;
+    allowed += (allowed.empty() ? "" : ", ") + std::string(e.name);
+  }
+  throw InputError(source + ": effect '" + name + "' is unknown; allowed: " + allowed + ".");
+}
+
+double cross_shear_wear_factor(double cross_shear_ratio, double gain) {
+  return 1.0 + gain * cross_shear_ratio;
+}
+
+double friction_wear_factor(double friction) { return std::sqrt(1.0 + 3.0 * friction * friction); }
+
+}  // namespace kneesim::diagnosis

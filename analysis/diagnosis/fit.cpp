@@ -1,0 +1,110 @@
+#include "analysis/diagnosis/fit.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace kneesim::diagnosis {
+namespace {
+
+double to_z(const ParamSpec& s, double v) {
+  v = std::clamp(v, s.lower, s.upper);
+  return s.log_scale ? std::log(v) : v;
+}
+
+double from_z(const ParamSpec& s, double z) {
+  const double v = s.log_scale ? std::exp(z) : z;
+  return std::clamp(v, s.lower, s.upper);
+}
+
+Eigen::VectorXd params_of(const std::vector<ParamSpec>& specs, const Eigen::VectorXd& z) {
+  Eigen::VectorXd p(z.size());
+  for (Eigen::Index i = 0; i < z.size(); ++i) p[i] = from_z(specs[i], z[i]);
+  return p;
+}
+
+double sum_sq(const Eigen::VectorXd& r) {
+  return r.allFinite() ? r.squaredNorm() : std::numeric_limits<double>::infinity();
+}
+
+FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>& specs,
+                              const Eigen::VectorXd& start) {
+  const Eigen::Index n = start.size();
+  Eigen::VectorXd z(n);
+  for (Eigen::Index i = 0; i < n; ++i) z[i] = to_z(specs[i], start[i]);
+  FitResult out;
+  Eigen::VectorXd r = f(params_of(specs, z));
+  ++out.evaluations;
+  double cost = sum_sq(r);
+  double lambda = 1e-3;
+  for (int iter = 0; iter < 100 && std::isfinite(cost); ++iter) {
+    // forward-difference Jacobian in z
+    Eigen::MatrixXd jac(r.size(), n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double h = 1e-6 * std::max(1.0, std::abs(z[j]));
+      Eigen::VectorXd zj = z;
+      zj[j] += h;
+      jac.col(j) = (f(params_of(specs, zj)) - r) / h;
+      ++out.evaluations;
+    }
+    const Eigen::MatrixXd jtj = jac.transpose() * jac;
+    const Eigen::VectorXd g = jac.transpose() * r;
+    bool improved = false;
+    for (int tries = 0; tries < 12; ++tries) {
+      Eigen::MatrixXd a = jtj;
+      a.diagonal() += lambda * (jtj.diagonal().array() + 1e-12).matrix();
+      const Eigen::VectorXd step = a.ldlt().solve(-g);
+      Eigen::VectorXd z_new = z + step;
+      for (Eigen::Index i = 0; i < n; ++i) z_new[i] = to_z(specs[i], from_z(specs[i], z_new[i]));
+      const Eigen::VectorXd r_new = f(params_of(specs, z_new));
+      ++out.evaluations;
+      const double c_new = sum_sq(r_new);
+      if (c_new < cost) {
+        const double rel = (cost - c_new) / std::max(cost, 1e-300);
+        z = z_new;
+        r = r_new;
+        cost = c_new;
+        lambda = std::max(lambda / 3.0, 1e-9);
+        improved = rel > 1e-10;
+        break;
+      }
+      lambda *= 4.0;
+    }
+    if (!improved) break;
+  }
+  out.params = params_of(specs, z);
+  out.rss = cost;
+  return out;
+}
+
+}  // namespace
+
+FitResult fit_least_squares(const ResidualsFn& residuals, const std::vector<ParamSpec>& specs,
+                            const Eigen::VectorXd& initial, bool multi_start) {
+  std::vector<Eigen::VectorXd> starts = {initial};
+  if (multi_start) {
+    for (size_t i = 0; i < specs.size(); ++i) {
+      const size_t existing = starts.size();
+      for (double s : specs[i].starts) {
+        for (size_t k = 0; k < existing; ++k) {
+          Eigen::VectorXd v = starts[k];
+          v[static_cast<Eigen::Index>(i)] = s;
+          starts.push_back(v);
+        }
+      }
+    }
+  }
+  FitResult best;
+  best.rss = std::numeric_limits<double>::infinity();
+  int evaluations = 0;
+  for (const auto& s : starts) {
+    FitResult r = levenberg_marquardt(residuals, specs, s);
+    evaluations += r.evaluations;
+    if (r.rss < best.rss || best.params.size() == 0) best = r;
+  }
+  best.evaluations = evaluations;
+  return best;
+}
+
+}  // namespace kneesim::diagnosis

@@ -1,0 +1,30 @@
+// Weighted nonlinear least squares for the diagnosis fits: Levenberg-Marquardt on a handful of
+// parameters with a forward-difference Jacobian, in a transformed space (log for positive,
+// multiplicative parameters; clamped to the bounds), with multi-start from the specs' starts.
+// Small and dependency-free on purpose: the fits have at most four parameters and the forward
+// model is a cheap table-driven simulation, so robustness (multi-start) matters more than speed.
+#pragma once
+
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "analysis/diagnosis/effect.h"
+
+namespace kneesim::diagnosis {
+
+// weighted residuals r(params) for params in I/O units
+using ResidualsFn = std::function<Eigen::VectorXd(const Eigen::VectorXd& params)>;
+
+struct FitResult {
+  Eigen::VectorXd params;  // best parameters [I/O units]
+  double rss = 0.0;        // sum of squared weighted residuals
+  int evaluations = 0;     // residual evaluations [-]
+};
+
+// minimises |r(params)|^2 from `initial`, plus every combination of the specs' extra starts
+// when `multi_start`
+FitResult fit_least_squares(const ResidualsFn& residuals, const std::vector<ParamSpec>& specs,
+                            const Eigen::VectorXd& initial, bool multi_start);
+
+}  // namespace kneesim::diagnosis

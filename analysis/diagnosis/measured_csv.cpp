@@ -1,0 +1,97 @@
+#include "analysis/diagnosis/measured_csv.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "engine/errors.h"
+
+namespace kneesim::diagnosis {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
+  if (!line.empty() && line.back() == ',') out.push_back("");
+  return out;
+}
+
+}  // namespace
+
+int CsvTable::column(const std::string& name) const {
+  for (size_t i = 0; i < header.size(); ++i) {
+    if (header[i] == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+int CsvTable::require(const std::string& name, const std::string& expected) const {
+  const int c = column(name);
+  if (c < 0) {
+    throw InputError(source + ": row 1 (header) has no column '" + name + "'; expected columns: " +
+                     expected + ".");
+  }
+  return c;
+}
+
+double CsvTable::number(size_t row, int col, double lo, double hi) const {
+  const std::string& text = cells[row][static_cast<size_t>(col)];
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  const std::string where = source + ": row " + std::to_string(lines[row]) + ", column " +
+                            header[static_cast<size_t>(col)] + ": ";
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
+    throw InputError(where + "'" + text + "' is not a number.");
+  }
+  if (v < lo || v > hi) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "value %g is outside the allowed range [%g, %g].", v, lo, hi);
+    throw InputError(where + buf);
+  }
+  return v;
+}
+
+bool CsvTable::empty(size_t row, int col) const {
+  return cells[row][static_cast<size_t>(col)].empty();
+}
+
+CsvTable read_csv_table(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": the file cannot be opened for reading.");
+  CsvTable t;
+  t.source = path;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (trim(line).empty() || trim(line)[0] == '#') continue;
+    if (t.header.empty()) {
+      t.header = split(line);
+      continue;
+    }
+    auto cells = split(line);
+    if (cells.size() != t.header.size()) {
+      throw InputError(path + ": row " + std::to_string(line_no) + " has " +
+                       std::to_string(cells.size()) + " fields but the header has " +
+                       std::to_string(t.header.size()) + ".");
+    }
+    t.cells.push_back(std::move(cells));
+    t.lines.push_back(line_no);
+  }
+  if (t.header.empty()) throw InputError(path + ": row 1: the file has no header row.");
+  if (t.cells.empty()) throw InputError(path + ": row 2: the file has no data rows.");
+  return t;
+}
+
+}  // namespace kneesim::diagnosis

@@ -1,0 +1,172 @@
+#include "analysis/diagnosis/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+namespace kneesim::diagnosis {
+namespace {
+
+std::string num(double v, const char* f = "%.4g") {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+nlohmann::json params_json(const ModelFit& m) {
+  nlohmann::json p = nlohmann::json::object();
+  for (size_t i = 0; i < m.specs.size(); ++i) p[m.specs[i].name] = m.params[static_cast<Eigen::Index>(i)];
+  return p;
+}
+
+Eigen::VectorXd baseline_of(const DiagnosisCase& c, const ModelFit& m) {
+  return m.params.head(static_cast<Eigen::Index>(c.baseline_params.size()));
+}
+
+Eigen::VectorXd effect_of(const DiagnosisCase& c, const ModelFit& m) {
+  const auto nb = static_cast<Eigen::Index>(c.baseline_params.size());
+  return m.params.tail(m.params.size() - nb);
+}
+
+}  // namespace
+
+nlohmann::json diagnosis_json(const DiagnosisCase& c, const DiagnosisResult& r) {
+  nlohmann::json j;
+  j["case"] = c.name;
+  j["measured"] = c.measured.source;
+  j["split_rule"] = c.split_rule;
+  j["rmse_unit"] = r.rmse_unit;
+  j["baseline"] = {{"model", r.baseline.model},
+                   {"params", params_json(r.baseline)},
+                   {"rmse", r.baseline.rmse},
+                   {"heldout_rmse", r.baseline.heldout_rmse}};
+  const ModelFit& e = r.extended();
+  j["effect"] = std::string(effect_name(e.effect));
+  nlohmann::json ci = nlohmann::json::object();
+  for (size_t i = 0; i < e.specs.size() && e.ci_low.size() > 0; ++i) {
+    ci[e.specs[i].name] = {e.ci_low[static_cast<Eigen::Index>(i)], e.ci_high[static_cast<Eigen::Index>(i)]};
+  }
+  j["extended"] = {{"model", e.model},
+                   {"params", params_json(e)},
+                   {"params_ci95", ci},
+                   {"rmse", e.rmse},
+                   {"heldout_rmse", e.heldout_rmse}};
+  j["gain"] = r.gain;
+  j["candidates"] = nlohmann::json::array();
+  const double aicc_none = r.candidates.front().aicc;
+  for (const auto& m : r.candidates) {
+    j["candidates"].push_back({{"name", std::string(effect_name(m.effect))},
+                               {"params", params_json(m)},
+                               {"rmse", m.rmse},
+                               {"heldout_rmse", m.heldout_rmse},
+                               {"aicc", m.aicc},
+                               {"delta_aicc", m.aicc - aicc_none}});
+  }
+  j["seconds"] = r.seconds;
+  return j;
+}
+
+std::string diagnosis_markdown(const DiagnosisCase& c, const DiagnosisResult& r) {
+  const auto& rows = c.measured.rows;
+  const ModelFit& b = r.baseline;
+  const ModelFit& e = r.extended();
+  const EffectInfo& info = effect_info(e.effect);
+  std::string md = "# Diagnosis: " + c.name + "\n\nMeasured data: `" + c.measured.source + "` (" +
+                   std::to_string(rows.size()) + " measurements). Held-out rule: " +
+                   c.split_rule + " (" + std::to_string(c.folds.size()) + " folds).\n\n";
+
+  md += "## What the baseline gets wrong\n\nBaseline: " + b.model + "; ";
+  for (size_t i = 0; i < b.specs.size(); ++i) {
+    md += b.specs[i].name + " = " + num(b.params[static_cast<Eigen::Index>(i)]) + " ";
+  }
+  md += ". In-sample RMSE " + num(b.rmse) + " (" + r.rmse_unit + "), held-out RMSE " +
+        num(b.heldout_rmse) + ".\n\n";
+  // residual pattern per group and quantity at the first and last abscissa
+  std::map<std::string, std::map<double, std::pair<double, int>>> mean_resid;
+  std::map<std::string, std::map<double, double>> mean_meas;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const std::string key = rows[i].group + ", " + rows[i].quantity;
+    auto& cell = mean_resid[key][rows[i].x];
+    cell.first += rows[i].value - b.predictions[static_cast<Eigen::Index>(i)];
+    cell.second += 1;
+    mean_meas[key][rows[i].x] += rows[i].value;
+  }
+  md += "| condition, quantity | " + c.measured.x_name +
+        " | mean measured | mean (measured - baseline) | relative |\n|---|---|---|---|---|\n";
+  for (const auto& [key, by_x] : mean_resid) {
+    for (const auto& [x, cell] : by_x) {
+      const double res = cell.first / cell.second;
+      const double meas = mean_meas[key][x] / cell.second;
+      md += "| " + key + " | " + num(x, "%.0f") + " | " + num(meas) + " | " + num(res) + " | " +
+            (meas != 0.0 ? num(100.0 * res / meas, "%+.0f %%") : std::string("-")) + " |\n";
+    }
+  }
+
+  md += "\n## Named cause: " + std::string(info.name) + "\n\n" + std::string(info.physics) + "\n\n";
+  if (e.effect == Effect::none) {
+    md += "No candidate extension passed both gates (AICc drop and held-out improvement "
+          "against the refitted baseline), so the data do not support an extension.\n\n";
+  }
+  md += "## Extension\n\nModel: `" + e.model + "`.\n\n| parameter | value | 95 % CI (bootstrap) |\n"
+        "|---|---|---|\n";
+  for (size_t i = 0; i < e.specs.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    std::string ci = "-";
+    if (e.ci_low.size()) {
+      ci = "[";
+      ci += num(e.ci_low[k]) + ", " + num(e.ci_high[k]) + "]";
+    }
+    md += "| " + e.specs[i].name + " | " + num(e.params[k]) + " | " + ci + " |\n";
+  }
+  md += "\nIn-sample RMSE " + num(e.rmse) + ", held-out RMSE " + num(e.heldout_rmse) +
+        " (" + r.rmse_unit + ").\n\n**Gain** = 1 - heldout_rmse_extended / "
+        "heldout_rmse_baseline = " + num(r.gain, "%.3f") + ".\n\n";
+
+  md += "## Candidates\n\n| effect | held-out RMSE | AICc | dAICc vs none | parameters |\n"
+        "|---|---|---|---|---|\n";
+  for (const auto& m : r.candidates) {
+    std::string ps;
+    for (size_t i = 0; i < m.specs.size(); ++i) {
+      ps += (i ? ", " : "") + m.specs[i].name + " = " + num(m.params[static_cast<Eigen::Index>(i)]);
+    }
+    md += "| " + std::string(effect_name(m.effect)) + " | " + num(m.heldout_rmse) + " | " +
+          num(m.aicc, "%.1f") + " | " + num(m.aicc - r.candidates.front().aicc, "%.1f") + " | " +
+          ps + " |\n";
+  }
+  md += "\nSelection: a candidate must lower AICc by more than the threshold and the held-out "
+        "RMSE by more than the threshold fraction against `none` (the baseline refitted by "
+        "least squares); the lowest held-out RMSE among those wins. Residuals of other "
+        "quantities are weighted into " + r.rmse_unit + " by the ratio of measured RMS values.\n";
+  return md;
+}
+
+std::string residuals_csv(const DiagnosisCase& c, const DiagnosisResult& r) {
+  std::string out = "group,specimen,quantity," + c.measured.x_name +
+                    ",measured,baseline,extended,heldout_baseline,heldout_extended\n";
+  const auto& e = r.extended();
+  for (size_t i = 0; i < c.measured.rows.size(); ++i) {
+    const auto& m = c.measured.rows[i];
+    const auto k = static_cast<Eigen::Index>(i);
+    out += m.group + "," + m.specimen + "," + m.quantity + "," + num(m.x, "%.10g") + "," +
+           num(m.value, "%.10g") + "," + num(r.baseline.predictions[k], "%.10g") + "," +
+           num(e.predictions[k], "%.10g") + "," + num(r.baseline.heldout_predictions[k], "%.10g") +
+           "," + num(e.heldout_predictions[k], "%.10g") + "\n";
+  }
+  return out;
+}
+
+std::string curves_csv(const DiagnosisCase& c, const DiagnosisResult& r) {
+  std::string out = "model,group,quantity," + c.measured.x_name + ",value\n";
+  if (!c.curves) return out;
+  const std::pair<const char*, const ModelFit*> models[] = {{"baseline", &r.baseline},
+                                                             {"extended", &r.extended()}};
+  for (const auto& [name, m] : models) {
+    for (const auto& p : c.curves(m->effect, baseline_of(c, *m), effect_of(c, *m))) {
+      out += std::string(name) + "," + p.group + "," + p.quantity + "," + num(p.x, "%.10g") +
+             "," + num(p.value, "%.10g") + "\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace kneesim::diagnosis

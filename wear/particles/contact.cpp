@@ -1,0 +1,152 @@
+#include "wear/particles/contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "engine/errors.h"
+
+namespace kneesim::particles {
+namespace {
+
+// fixed-order sum of f(k) over the grid: each row sequentially, then the rows in order
+template <class F>
+double row_sum(int nx, int ny, F f) {
+  std::vector<double> rows(nx);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < nx; ++i) {
+    double s = 0.0;
+    for (int j = 0; j < ny; ++j) s += f(static_cast<long>(i) * ny + j);
+    rows[i] = s;
+  }
+  double s = 0.0;
+  for (double r : rows) s += r;
+  return s;
+}
+
+}  // namespace
+
+double ordered_sum(const std::vector<double>& v, int nx, int ny) {
+  return row_sum(nx, ny, [&](long k) { return v[k]; });
+}
+
+void check_load(double load, double hardness, const Grid& grid, const std::string& source) {
+  char buf[256];
+  if (!(load > 0.0) || !std::isfinite(load)) {
+    std::snprintf(buf, sizeof buf, "%s: load %g N is not allowed; the load must be > 0",
+                  source.c_str(), load);
+    throw InputError(buf);
+  }
+  const double cap = hardness * grid.cell_area() * double(grid.nx) * grid.ny;
+  if (hardness > 0.0 && load > cap) {
+    std::snprintf(buf, sizeof buf,
+                  "%s: load %g N on the %g x %g um grid exceeds hardness x area = %g N; lower "
+                  "the load or enlarge the grid",
+                  source.c_str(), load, grid.nx * grid.dx * 1e6, grid.ny * grid.dy * 1e6, cap);
+    throw InputError(buf);
+  }
+}
+
+ContactResult solve_contact(const DeflectionOperator& op, const std::vector<double>& h,
+                            const ContactOptions& opt, const std::vector<double>* p_start) {
+  const Grid& g = op.grid();
+  const int nx = g.nx, ny = g.ny;
+  const long n = g.size();
+  const double area = g.cell_area();
+  const double cap = opt.hardness > 0.0 ? opt.hardness : std::numeric_limits<double>::infinity();
+  const double target = opt.load;
+
+  ContactResult res;
+  std::vector<double>& p = res.pressure;
+  std::vector<double>& u = res.deflection;
+  std::vector<double>& gap = res.gap;
+  std::vector<double> t(n, 0.0), r(n, 0.0), p_old(n);
+  u.assign(n, 0.0);
+  gap.assign(n, 0.0);
+
+  // start: the given pressure rescaled to the load, or a uniform pressure
+  if (p_start != nullptr && static_cast<long>(p_start->size()) == n) {
+    p = *p_start;
+  } else {
+    p.assign(n, 1.0);
+  }
+  {
+    const double w = area * ordered_sum(p, nx, ny);
+    const double s = w > 0.0 ? target / w : 0.0;
+    for (long k = 0; k < n; ++k) p[k] = std::min(p[k] * s, cap);
+    if (!(w > 0.0)) std::fill(p.begin(), p.end(), std::min(target / (area * n), cap));
+  }
+
+  auto in_set = [&](long k) { return p[k] > 0.0 && p[k] < cap; };
+  double g_old = 1.0;
+  bool conjugate = false;
+  for (int it = 1; it <= opt.max_iterations; ++it) {
+    res.iterations = it;
+    // gap on the current contact set, shifted to zero mean there
+    op.apply(p.data(), u.data());
+    const double n_set = row_sum(nx, ny, [&](long k) { return in_set(k) ? 1.0 : 0.0; });
+    if (n_set == 0.0) break;
+    const double mean_g = row_sum(nx, ny, [&](long k) { return in_set(k) ? u[k] + h[k] : 0.0; }) / n_set;
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) gap[k] = u[k] + h[k] - mean_g;
+    const double g_norm = row_sum(nx, ny, [&](long k) { return in_set(k) ? gap[k] * gap[k] : 0.0; });
+    // conjugate search direction
+    const double beta = conjugate ? g_norm / g_old : 0.0;
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) t[k] = in_set(k) ? gap[k] + beta * t[k] : 0.0;
+    g_old = g_norm;
+    // step length from the deflection of the direction
+    op.apply(t.data(), r.data());
+    const double n_r = row_sum(nx, ny, [&](long k) { return in_set(k) ? r[k] : 0.0; }) / n_set;
+    const double rt = row_sum(nx, ny, [&](long k) { return in_set(k) ? (r[k] - n_r) * t[k] : 0.0; });
+    const double gt = row_sum(nx, ny, [&](long k) { return in_set(k) ? gap[k] * t[k] : 0.0; });
+    const double tau = rt != 0.0 ? gt / rt : 0.0;
+    p_old = p;
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      if (in_set(k)) p[k] = std::clamp(p[k] - tau * t[k], 0.0, cap);
+    }
+    // cells outside the set that overlap re-enter; then the CG restarts
+    const double n_enter = row_sum(nx, ny, [&](long k) {
+      return (p_old[k] == 0.0 && gap[k] < 0.0) ? 1.0 : 0.0;
+    });
+    conjugate = n_enter == 0.0;
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      if (p_old[k] == 0.0 && gap[k] < 0.0) p[k] = std::min(-tau * gap[k], cap);
+      // capped cells whose gap opens are released below the cap
+      if (p_old[k] == cap && gap[k] > 0.0) p[k] = std::nextafter(cap, 0.0);
+    }
+    // impose the load on the cells below the cap
+    const double w_cap = area * row_sum(nx, ny, [&](long k) { return p[k] >= cap ? cap : 0.0; });
+    const double w_free = area * row_sum(nx, ny, [&](long k) { return p[k] < cap ? p[k] : 0.0; });
+    if (w_free > 0.0) {
+      const double s = (target - w_cap) / w_free;
+#pragma omp parallel for schedule(static)
+      for (long k = 0; k < n; ++k) {
+        if (p[k] < cap) p[k] = std::min(p[k] * s, cap);
+      }
+    }
+    // converged when the pressure no longer changes
+    const double dp = row_sum(nx, ny, [&](long k) { return std::abs(p[k] - p_old[k]); });
+    if (area * dp <= opt.tolerance * target) {
+      res.converged = true;
+      break;
+    }
+  }
+
+  // final deflection, approach and gap
+  op.apply(p.data(), u.data());
+  const double n_set = row_sum(nx, ny, [&](long k) { return in_set(k) ? 1.0 : 0.0; });
+  res.approach = n_set > 0.0
+                     ? row_sum(nx, ny, [&](long k) { return in_set(k) ? u[k] + h[k] : 0.0; }) / n_set
+                     : 0.0;
+  for (long k = 0; k < n; ++k) gap[k] = h[k] + u[k] - res.approach;
+  res.load = area * ordered_sum(p, nx, ny);
+  res.contact_fraction = row_sum(nx, ny, [&](long k) { return p[k] > 0.0 ? 1.0 : 0.0; }) / n;
+  res.capped_fraction = row_sum(nx, ny, [&](long k) { return p[k] >= cap ? 1.0 : 0.0; }) / n;
+  return res;
+}
+
+}  // namespace kneesim::particles

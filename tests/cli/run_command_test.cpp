@@ -1,0 +1,189 @@
+// `kneesim run` as a user runs it: the built program is started as a subprocess (found in the
+// build tree beside this test: <build>/tests/cli/test_cli -> <build>/tools/kneesim), and its
+// exit code, stderr and output folder are checked against the issue-2 contract:
+// kinematics.csv (one row per 1 % of the last cycle, the required columns), summary.json (the
+// required keys), .vtp pressure maps and kinematics.png; bad input exits non-zero with one
+// line on stderr and leaves no summary.json.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// the kneesim executable: the nearest ancestor of this test binary holding tools/kneesim
+fs::path find_kneesim() {
+  const fs::path self = fs::read_symlink("/proc/self/exe");
+  for (fs::path dir = self.parent_path(); !dir.empty() && dir != dir.root_path();
+       dir = dir.parent_path()) {
+    const fs::path candidate = dir / "tools" / "kneesim";
+    if (fs::is_regular_file(candidate) && ::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return {};
+}
+
+struct TempDir {
+  fs::path path;  // removed at the end of the test case
+  TempDir() {
+    std::random_device rd;
+    path = fs::temp_directory_path() / ("kneesim_cli_" + std::to_string(rd()) + std::to_string(rd()));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Result {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// runs kneesim with the arguments, stdout and stderr captured into files of `dir`
+Result run_kneesim(const std::vector<std::string>& args, const fs::path& dir) {
+  const fs::path exe = find_kneesim();
+  REQUIRE_MESSAGE(!exe.empty(), "kneesim executable not found above " << fs::read_symlink("/proc/self/exe"));
+  std::string cmd = quote(exe.string());
+  for (const auto& a : args) cmd += " " + quote(a);
+  cmd += " >" + quote((dir / "stdout.txt").string()) + " 2>" + quote((dir / "stderr.txt").string());
+  const int status = std::system(cmd.c_str());
+  Result r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(dir / "stdout.txt");
+  r.err = slurp(dir / "stderr.txt");
+  return r;
+}
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  for (std::string cell; std::getline(ss, cell, sep);) out.push_back(cell);
+  return out;
+}
+
+int count_lines(const std::string& text) {
+  int n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("kneesim run writes the complete result set") {
+  TempDir tmp;
+  const fs::path out = tmp.path / "result";
+  // the built-in default at a coarse insert (2 mm edges) to keep the test fast
+  const Result r = run_kneesim({"run", "--out", out.string(), "--set", "implant.edge_length_mm=2"},
+                               tmp.path);
+  INFO("stderr: " << r.err);
+  REQUIRE(r.exit_code == 0);
+
+  // kinematics.csv: header with the required columns, one row per 1 % of the last cycle
+  std::ifstream csv(out / "kinematics.csv");
+  REQUIRE(csv.good());
+  std::string header;
+  std::getline(csv, header);
+  const std::vector<std::string> cols = split(header, ',');
+  for (const char* c : {"gait_pct", "flexion_deg", "ap_mm", "ie_deg", "ml_mm", "vv_deg",
+                        "axial_force_N", "contact_force_N", "medial_force_N", "lateral_force_N",
+                        "contact_area_mm2", "peak_pressure_MPa"}) {
+    CHECK_MESSAGE(std::find(cols.begin(), cols.end(), c) != cols.end(), "missing column " << c);
+  }
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(csv, line);) {
+    if (!line.empty()) rows.push_back(split(line, ','));
+  }
+  CHECK((rows.size() == 100 || rows.size() == 101));
+  const auto pct_col = std::find(cols.begin(), cols.end(), "gait_pct") - cols.begin();
+  for (size_t i = 0; i < rows.size(); ++i) {
+    REQUIRE(rows[i].size() == cols.size());
+    CHECK(std::stod(rows[i][pct_col]) == doctest::Approx(static_cast<double>(i)).epsilon(1e-6));
+  }
+
+  // summary.json with the required keys, all finite numbers, and plausible values
+  const auto summary = nlohmann::json::parse(slurp(out / "summary.json"));
+  for (const char* k : {"ap_rom_mm", "ie_rom_mm", "peak_pressure_MPa", "mean_peak_pressure_MPa",
+                        "seconds_per_cycle", "steps_per_cycle"}) {
+    REQUIRE_MESSAGE(summary.contains(k), "summary.json lacks " << k);
+    CHECK(summary[k].is_number());
+  }
+  CHECK(summary["ap_rom_mm"].get<double>() > 0.0);
+  CHECK(summary["ie_rom_mm"].get<double>() > 0.0);
+  CHECK(summary["peak_pressure_MPa"].get<double>() >=
+        summary["mean_peak_pressure_MPa"].get<double>());
+  CHECK(summary["steps_per_cycle"].get<double>() >= 100.0);
+  MESSAGE("kneesim run (edge 2 mm): AP ROM " << summary["ap_rom_mm"] << " mm, IE ROM "
+          << summary["ie_rom_mm"] << " deg, peak pressure " << summary["peak_pressure_MPa"]
+          << " MPa, " << summary["seconds_per_cycle"] << " s per cycle, "
+          << summary["steps_per_cycle"] << " steps per cycle");
+
+  // pressure maps (VTK PolyData XML) and the plot (PNG signature)
+  int vtp = 0;
+  for (const auto& e : fs::directory_iterator(out)) {
+    if (e.path().extension() == ".vtp") {
+      ++vtp;
+      CHECK(slurp(e.path()).find("<VTKFile") != std::string::npos);
+    }
+  }
+  CHECK(vtp >= 1);
+  const std::string png = slurp(out / "kinematics.png");
+  REQUIRE(png.size() > 8);
+  CHECK(png.compare(0, 8, "\x89PNG\r\n\x1a\n") == 0);
+}
+
+TEST_CASE("kneesim run rejects bad input with one line and no summary") {
+  TempDir tmp;
+  fs::path bad_config = tmp.path / "negative_modulus.toml";
+  std::ofstream(bad_config) << "[material]\nelastic_modulus_MPa = -5\n";
+  struct Case {
+    const char* name;
+    std::vector<std::string> args;
+    std::vector<std::string> mentions;  // substrings the message must contain
+  };
+  const std::vector<Case> cases = {
+      {"unknown key", {"--set", "contact.no_such_key=1"}, {"contact.no_such_key"}},
+      {"unknown preset", {"--set", "rig.preset=foo"}, {"rig.preset", "foo", "stanmore"}},
+      {"missing config file", {(tmp.path / "missing.toml").string()}, {"missing.toml"}},
+      {"negative modulus", {bad_config.string()},
+       {"negative_modulus.toml", "elastic_modulus_MPa", "-5"}},
+      {"friction outside [0, 1]", {"--set", "material.friction=1.5"}, {"material.friction", "1.5"}},
+      {"bad --set syntax", {"--set", "no_equals_sign"}, {"no_equals_sign"}},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    const fs::path out = tmp.path / "out";
+    std::vector<std::string> args = {"run", "--out", out.string()};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const Result r = run_kneesim(args, tmp.path);
+    INFO("stderr: " << r.err);
+    CHECK(r.exit_code != 0);
+    CHECK(count_lines(r.err) == 1);
+    for (const auto& m : c.mentions) CHECK_MESSAGE(r.err.find(m) != std::string::npos, m);
+    CHECK_FALSE(fs::exists(out / "summary.json"));
+    CHECK_FALSE(fs::exists(out / "kinematics.csv"));
+  }
+}

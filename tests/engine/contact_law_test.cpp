@@ -1,0 +1,141 @@
+// Contact and restraint kernels (engine/contact_law.h) against their closed forms
+// (physics.md sections 2 and 4): the foundation modulus, the linear and nonlinear
+// elastic-foundation laws and their tangent stiffness, regularized Coulomb friction, and the
+// spring-gap restraint law with the Pal 2008 Stanmore values.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "engine/contact_law.h"
+
+using namespace kneesim::engine;
+
+TEST_CASE("foundation modulus K = (1 - nu) E / ((1 + nu)(1 - 2 nu))") {
+  // UHMWPE E = 685 MPa, nu = 0.47: K = 0.53 * 685 / (1.47 * 0.06) MPa = 4116.1 MPa
+  CHECK(foundation_modulus(685e6, 0.47) == doctest::Approx(0.53 * 685e6 / (1.47 * 0.06)));
+  CHECK(foundation_modulus(685e6, 0.47) == doctest::Approx(4116.1e6).epsilon(1e-4));
+  // nu = 0: K = E
+  CHECK(foundation_modulus(1e9, 0.0) == 1e9);
+}
+
+TEST_CASE("elastic-foundation pressure laws") {
+  const double K = 4.1e9, h = 6e-3;
+  SUBCASE("linear p = K d / h, zero out of contact") {
+    for (double d : {1e-6, 1e-5, 1e-4, 1e-3, 3e-3}) {
+      CHECK(ef_pressure(ContactLaw::kLinear, K, d, h) == doctest::Approx(K * d / h).epsilon(1e-15));
+      CHECK(ef_stiffness(ContactLaw::kLinear, K, d, h) == doctest::Approx(K / h).epsilon(1e-15));
+    }
+    CHECK(ef_pressure(ContactLaw::kLinear, K, 0.0, h) == 0.0);
+    CHECK(ef_pressure(ContactLaw::kLinear, K, -1e-4, h) == 0.0);
+  }
+  SUBCASE("nonlinear p = -K ln(1 - d/h), tangent K / (h - d), -> linear for d << h") {
+    for (double d : {1e-6, 1e-5, 1e-4, 1e-3, 3e-3, 5e-3}) {
+      CHECK(ef_pressure(ContactLaw::kNonlinear, K, d, h) ==
+            doctest::Approx(-K * std::log(1.0 - d / h)).epsilon(1e-14));
+      CHECK(ef_stiffness(ContactLaw::kNonlinear, K, d, h) ==
+            doctest::Approx(K / (h - d)).epsilon(1e-14));
+      // tangent stiffness is the derivative of the law (central difference, step d/1e4)
+      const double s = d * 1e-4;
+      const double fd = (ef_pressure(ContactLaw::kNonlinear, K, d + s, h) -
+                         ef_pressure(ContactLaw::kNonlinear, K, d - s, h)) /
+                        (2 * s);
+      CHECK(fd == doctest::Approx(ef_stiffness(ContactLaw::kNonlinear, K, d, h)).epsilon(1e-6));
+    }
+    // small strain: -ln(1 - e) = e + e^2/2 + ..., relative excess e/2 = 5e-5 at e = 1e-4
+    const double d = 6e-7;
+    CHECK(ef_pressure(ContactLaw::kNonlinear, K, d, h) / (K * d / h) ==
+          doctest::Approx(1.0 + 0.5 * d / h).epsilon(1e-9));
+    CHECK(ef_pressure(ContactLaw::kNonlinear, K, 0.0, h) == 0.0);
+    CHECK(ef_pressure(ContactLaw::kNonlinear, K, -1e-4, h) == 0.0);
+    // beyond the singularity the law is capped at d = 0.99 h (finite, documented)
+    CHECK(std::isfinite(ef_pressure(ContactLaw::kNonlinear, K, 2.0 * h, h)));
+    CHECK(ef_pressure(ContactLaw::kNonlinear, K, 2.0 * h, h) ==
+          doctest::Approx(-K * std::log(0.01)));
+  }
+  SUBCASE("flat punch on a bed of elements: F = K A d / h (linear), -K ln(1 - d/h) A") {
+    // summing the kernel over a 40 x 40 grid of 0.5 mm square elements under a rigid flat
+    // punch pressed by d: every element has penetration d; the sum must equal the closed form
+    // to round-off (1e-12 relative)
+    const int n = 40;
+    const double a = 0.5e-3, d = 0.2e-3;
+    double f_lin = 0.0, f_non = 0.0;
+    for (int i = 0; i < n * n; ++i) {
+      f_lin += a * a * ef_pressure(ContactLaw::kLinear, K, d, h);
+      f_non += a * a * ef_pressure(ContactLaw::kNonlinear, K, d, h);
+    }
+    const double area = n * n * a * a;
+    CHECK(f_lin == doctest::Approx(K * area * d / h).epsilon(1e-12));
+    CHECK(f_non == doctest::Approx(-K * area * std::log(1.0 - d / h)).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("regularized Coulomb friction") {
+  // t = -mu p v / sqrt(|v|^2 + eps^2): opposite to the slip, magnitude -> mu p for |v| >> eps,
+  // -> mu p |v| / eps (linear in v) for |v| << eps
+  const double mu = 0.07, p = 10e6, eps = 1e-3;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 200; ++i) {
+    Eigen::Vector3d dir(u(rng), u(rng), u(rng));
+    dir.normalize();
+    // direction: antiparallel to the slip for any speed
+    for (double speed : {1e-9, 1e-5, 1e-3, 0.1, 10.0}) {
+      const Eigen::Vector3d t = friction_traction(mu, p, speed * dir, eps);
+      CHECK(t.normalized().dot(dir) == doctest::Approx(-1.0).epsilon(1e-12));
+      CHECK(t.norm() <= mu * p);
+    }
+    // |v| = 1000 eps: magnitude mu p / sqrt(1 + 1e-6) = mu p (1 - 5e-7)
+    CHECK(friction_traction(mu, p, 1.0 * dir, eps).norm() ==
+          doctest::Approx(mu * p).epsilon(1e-6));
+    // |v| = eps / 1000: magnitude mu p |v| / eps (1 - 5e-7): linear in |v|
+    const double v = 1e-6;
+    CHECK(friction_traction(mu, p, v * dir, eps).norm() ==
+          doctest::Approx(mu * p * v / eps).epsilon(1e-6));
+    CHECK(friction_traction(mu, p, 2 * v * dir, eps).norm() ==
+          doctest::Approx(2.0 * friction_traction(mu, p, v * dir, eps).norm()).epsilon(1e-5));
+    // |v| = eps: mu p / sqrt(2)
+    CHECK(friction_traction(mu, p, eps * dir, eps).norm() ==
+          doctest::Approx(mu * p / std::sqrt(2.0)).epsilon(1e-12));
+  }
+  CHECK(friction_traction(mu, p, Eigen::Vector3d::Zero(), eps).norm() == 0.0);
+  CHECK(friction_traction(0.0, p, Eigen::Vector3d(1, 0, 0), eps).norm() == 0.0);
+}
+
+TEST_CASE("spring-gap restraint law with the Pal 2008 Stanmore values") {
+  // physics.md section 2: gap 3 mm, k_ant 4.75 N/mm, k_post 22.18 N/mm, no stiffness inside
+  RestraintSpring s;
+  s.gap = 3e-3;
+  s.k_inside = 0.0;
+  s.k_positive = 4.75e3;
+  s.k_negative = 22.18e3;
+  CHECK(spring_gap_force(s, 2.9e-3) == 0.0);
+  CHECK(spring_gap_force(s, -2.9e-3) == 0.0);
+  CHECK(spring_gap_force(s, 0.0) == 0.0);
+  CHECK(spring_gap_force(s, 4e-3) == doctest::Approx(-4.75).epsilon(1e-12));
+  CHECK(spring_gap_force(s, -5e-3) == doctest::Approx(44.36).epsilon(1e-12));
+  // continuity at +-gap: the limits from both sides agree (to the rounding of one ulp of x)
+  for (double g : {s.gap, -s.gap}) {
+    const double in = spring_gap_force(s, std::nextafter(g, 0.0));
+    const double out = spring_gap_force(s, std::nextafter(g, 2.0 * g));
+    CHECK(std::abs(in - out) < 1e-12);
+  }
+}
+
+TEST_CASE("spring-gap law with stiffness inside the gap (ISO-like preset) is continuous") {
+  // inside: -k_in x; beyond +g: -k_in g - k_out (x - g); beyond -g: +k_in g - k_out (x + g)
+  RestraintSpring s;
+  s.gap = 2.5e-3;
+  s.k_inside = 9.3e3;
+  s.k_positive = s.k_negative = 44e3;
+  CHECK(spring_gap_force(s, 1e-3) == doctest::Approx(-9.3));
+  CHECK(spring_gap_force(s, 3.5e-3) == doctest::Approx(-9.3 * 2.5 - 44.0));
+  CHECK(spring_gap_force(s, -3.5e-3) == doctest::Approx(9.3 * 2.5 + 44.0));
+  for (double g : {s.gap, -s.gap}) {
+    const double in = spring_gap_force(s, std::nextafter(g, 0.0));
+    const double out = spring_gap_force(s, std::nextafter(g, 2.0 * g));
+    CHECK(std::abs(in - out) < 1e-9);
+  }
+  // odd symmetry for equal stiffnesses
+  for (double x : {0.5e-3, 2.5e-3, 7e-3}) CHECK(spring_gap_force(s, -x) == -spring_gap_force(s, x));
+}

@@ -36,6 +36,7 @@ double parse_load(const std::string& group) { return std::strtod(group.c_str(), 
 struct BorModel {
   bor::BorRig rig;
   double reference_pressure = 0.0;  // p_ref [Pa]
+  double running_in_cycles = 0.0;   // N_r when it is not fitted [cycles]
   std::map<std::string, std::unique_ptr<bor::BorContactTable>> tables;
   MeasuredData measured;  // a copy, so the case can be moved or copied freely
 };
@@ -102,9 +103,18 @@ DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
                      "calibrates at one and judges the model at the others).");
   }
 
+  // the running-in decay constant is identifiable only when the running-in was sampled;
+  // otherwise it is fixed so that 95 % of the running-in is over at the steady-state start
+  bool samples_running_in = false;
+  for (const auto& m : rows) {
+    samples_running_in = samples_running_in || (m.x > 0.0 && m.x < options.steady_state_from);
+  }
+  const double fixed_running_in_cycles = std::max(options.steady_state_from / 3.0, 1e3);
+
   auto model = std::make_shared<BorModel>();
   model->rig = options.rig;
   model->measured = c.measured;
+  model->running_in_cycles = fixed_running_in_cycles;
   model->reference_pressure =
       bor::solve_bor_contact(options.rig, options.calibration_load, 0.0).mean_pressure;
   for (const auto& g : loads) {
@@ -127,8 +137,9 @@ DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
     bor::BorWearParams p;
     p.k = b[0] * 1e-6;
     p.reference_pressure = model->reference_pressure;
+    p.running_in_cycles = model->running_in_cycles;
     const auto names = bor::wear_law_param_names(law_of(e));
-    for (size_t i = 0, j = 0; i < names.size(); ++i) {
+    for (size_t i = 0, j = 0; i < names.size() && static_cast<Eigen::Index>(j) < ep.size(); ++i) {
       if (names[i] == "reference_pressure_MPa") continue;
       bor::set_wear_param(p, names[i], ep[static_cast<Eigen::Index>(j++)], "diagnosis fit");
     }
@@ -234,7 +245,22 @@ DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
     return out;
   };
 
-  c.effect_params = [](Effect e) { return effect_info(e).params; };
+  c.effect_params = [samples_running_in](Effect e) {
+    auto specs = effect_info(e).params;
+    if (e == Effect::running_in && !samples_running_in) specs.resize(1);  // a only
+    return specs;
+  };
+  if (!samples_running_in) {
+    c.model_notes[Effect::running_in] =
+        "N_r fixed at " + std::to_string(static_cast<long>(fixed_running_in_cycles)) +
+        " cycles: no measurement falls inside the running-in (before " +
+        std::to_string(static_cast<long>(options.steady_state_from)) +
+        " cycles), so only the running-in volume a N_r k F S is identifiable";
+  }
+  c.model_notes[Effect::pressure_dependent_wear] =
+      "p_ref = " + std::to_string(model->reference_pressure * 1e-6).substr(0, 5) +
+      " MPa, the unworn mean pressure at " + bor_load_label(options.calibration_load);
+  c.model_notes[Effect::creep] = "delta_el = unworn elastic penetration at each load";
   return c;
 }
 

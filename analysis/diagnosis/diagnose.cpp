@@ -146,6 +146,9 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
   const auto eff = case_effect_params(c, e);
   m.specs.insert(m.specs.end(), eff.begin(), eff.end());
   m.model = std::string(effect_info(e).extension);
+  if (const auto it = c.model_notes.find(e); it != c.model_notes.end()) {
+    m.model += "; " + it->second;
+  }
   const auto rows = all_rows(c.measured.rows.size());
   const int n = static_cast<int>(rows.size());
   const int k = static_cast<int>(m.specs.size()) + 1 + (pb.random_effect ? 1 : 0);

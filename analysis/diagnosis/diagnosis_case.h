@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,8 @@ struct DiagnosisCase {
       predict;
   // the practitioner's calibration of the baseline parameters from the `train` rows
   std::function<Eigen::VectorXd(const std::vector<int>& train)> calibrate_baseline;
+  // case-specific remarks appended to an effect's model line (fixed parameters, references)
+  std::map<Effect, std::string> model_notes;
   // dense model curves for plots (optional)
   std::function<std::vector<CurvePoint>(Effect effect, const Eigen::VectorXd& baseline,
                                         const Eigen::VectorXd& effect_params)>

@@ -13,7 +13,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "kneesim 0.1.0");
   kneesim::cli::add_run_command(app);
+  kneesim::cli::add_wear_command(app);
+  kneesim::cli::add_compare_command(app);
   kneesim::cli::add_bor_command(app);
+  kneesim::cli::add_diagnose_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,125 @@
+// Bad input (issue 2 acceptance, design.md error tiers): each case throws kneesim::InputError
+// while loading (models::load_config, models::parse_override, models::build_model), with one
+// sentence naming the file or key, the offending value and the allowed range. Reference: the
+// messages' required content, checked by substrings.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "engine/errors.h"
+#include "engine_fixtures.h"
+
+using namespace kneesim;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+  fs::path path;  // removed at the end of the test case
+  TempDir() {
+    std::random_device rd;
+    path = fs::temp_directory_path() / ("kneesim_cfg_" + std::to_string(rd()) + std::to_string(rd()));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(path / name) << text;
+    return path / name;
+  }
+};
+
+// the message of the InputError thrown by f ("" if none was thrown), with a check that it is
+// one sentence on one line
+template <class F>
+std::string input_error(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    CHECK(what.find('\n') == std::string::npos);
+    return what;
+  }
+  FAIL("no InputError thrown");
+  return "";
+}
+
+void check_mentions(const std::string& message, const std::vector<std::string>& parts) {
+  CAPTURE(message);
+  for (const auto& p : parts) CHECK_MESSAGE(message.find(p) != std::string::npos, "missing: " << p);
+}
+
+}  // namespace
+
+TEST_CASE("config errors name the file or key, the value and the allowed range") {
+  TempDir tmp;
+  SUBCASE("unknown key in a file") {
+    const fs::path f = tmp.write("run.toml", "[contact]\nfriction_coefficient = 0.1\n");
+    check_mentions(input_error([&] { models::load_config(f, {}); }),
+                   {"run.toml", "contact.friction_coefficient", "contact.friction"});
+  }
+  SUBCASE("unknown key via --set") {
+    check_mentions(input_error([] { test::default_config({"solver.no_such_key=1"}); }),
+                   {"--set", "solver.no_such_key"});
+  }
+  SUBCASE("unknown rig preset") {
+    check_mentions(input_error([] { test::default_config({"rig.preset=robot"}); }),
+                   {"rig.preset", "robot", "stanmore", "materials_study", "displacement"});
+  }
+  SUBCASE("negative modulus in a file") {
+    const fs::path f = tmp.write("soft.toml", "[material]\nelastic_modulus_MPa = -5\n");
+    check_mentions(input_error([&] { models::load_config(f, {}); }),
+                   {"soft.toml", "material.elastic_modulus_MPa", "-5", "[1, 1e+06]"});
+  }
+  SUBCASE("friction outside [0, 1]") {
+    check_mentions(input_error([] { test::default_config({"material.friction=1.5"}); }),
+                   {"material.friction", "1.5", "[0, 1]"});
+    check_mentions(input_error([] { test::default_config({"contact.friction=-0.1"}); }),
+                   {"contact.friction", "-0.1", "[0, 1]"});
+  }
+  SUBCASE("bad --set syntax") {
+    check_mentions(input_error([] { models::parse_override("material.friction"); }),
+                   {"material.friction", "key=value"});
+    check_mentions(input_error([] { models::parse_override("=0.1"); }), {"=0.1", "key=value"});
+  }
+  SUBCASE("missing config file") {
+    const fs::path f = tmp.path / "nowhere.toml";
+    check_mentions(input_error([&] { models::load_config(f, {}); }), {"nowhere.toml", "not found"});
+  }
+  SUBCASE("TOML syntax error names the file and line") {
+    const fs::path f = tmp.write("broken.toml", "[rig]\npreset = \n");
+    check_mentions(input_error([&] { models::load_config(f, {}); }), {"broken.toml", ":2"});
+  }
+  SUBCASE("missing mesh file") {
+    const fs::path missing = tmp.path / "no_femur.stl";
+    const models::Config c = test::default_config(
+        {"implant.kind=\"mesh\"", "implant.mesh.femur=\"" + missing.string() + "\"",
+         "implant.mesh.insert=\"" + (tmp.path / "no_insert.stl").string() + "\""});
+    check_mentions(input_error([&] { models::build_model(c); }), {"no_femur.stl"});
+  }
+  SUBCASE("mesh implant without mesh paths") {
+    check_mentions(input_error([] { test::default_config({"implant.kind=mesh"}); }),
+                   {"implant.mesh.femur", "implant.mesh.insert"});
+  }
+  SUBCASE("gait file with non-monotonic time") {
+    const fs::path g = tmp.write("gait.csv",
+                                 "gait_pct,flexion_deg,axial_force_N,ap_force_N,ie_torque_Nm\n"
+                                 "0,0,100,0,0\n"
+                                 "50,20,2000,0,0\n"
+                                 "40,10,1000,0,0\n"
+                                 "100,0,100,0,0\n");
+    const models::Config c = test::default_config(
+        {"gait.file=\"" + g.string() + "\"", "implant.edge_length_mm=4"});
+    check_mentions(input_error([&] { models::build_model(c); }),
+                   {"gait.csv", "line 4", "gait_pct", "40", "50", "increasing"});
+  }
+  SUBCASE("value of the wrong type") {
+    check_mentions(input_error([] { test::default_config({"solver.cycles=2.5"}); }),
+                   {"solver.cycles", "2.5", "integer"});
+  }
+}

@@ -8,6 +8,10 @@
 // quantity in the data by the ratio of their measured RMS values, so one RMSE summarises a
 // fit and is printed in a familiar unit (mm^3 for a volume-first case).
 //
+// Specimens: when the data name them, every fit carries a specimen random effect (the
+// specimen's wear factor scatters multiplicatively), whitened exactly, with its variance ratio
+// profiled; otherwise AICc would count a specimen's correlated points as independent.
+//
 // Selection rule: a candidate is supported when its AICc is below the "none" candidate's by
 // more than ic_threshold AND its held-out RMSE is below (1 - heldout_threshold) times the
 // "none" candidate's; among supported candidates the lowest held-out RMSE wins. Both gates

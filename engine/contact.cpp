@@ -86,13 +86,26 @@ void calc_contact(const Model& model, const State& state, Data& data) {
     if (data.penetration[data.due[i]] > 0.0) data.in_contact.push_back(data.due[i]);
   }
 
-  // fixed-order reduction: totals, per-condyle summary, torques about the pivots
+  // fixed-order reduction: totals, per-condyle summary, torques about the pivots, and the
+  // tangent stiffness per DOF for the stability monitor
   ContactSummary& sum = data.contact;
   sum = ContactSummary{};
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment_O = Eigen::Vector3d::Zero();
   std::array<double, 2> weight{};
+  std::array<std::array<double, kNumDof>, 2> stiffness{};
   for (int e : data.in_contact) {
     const Eigen::Vector3d c_W = data.X_WT * s.centroid_T[e];
+    const Eigen::Vector3d n_W = data.X_WT.linear() * s.normal_T[e];
+    const double ke = s.area[e] * ef_stiffness(cm.law, cm.foundation_modulus,
+                                               data.penetration[e], s.thickness[e]);
+    for (int c = 0; c < 2; ++c) {
+      const Eigen::Vector3d rxn = (c_W - state.carriages[c].pivot_W).cross(n_W);
+      for (int i = 0; i < 3; ++i) {
+        stiffness[c][i] += ke * n_W[i] * n_W[i];
+        const double j = data.axes[c][i].dot(rxn);
+        stiffness[c][3 + i] += ke * j * j;
+      }
+    }
     const Eigen::Vector3d& f = data.element_force_W[e];
     force += f;
     moment_O += c_W.cross(f);
@@ -114,6 +127,13 @@ void calc_contact(const Model& model, const State& state, Data& data) {
   const double area = sum.area[0] + sum.area[1];
   sum.mean_pressure = area > 0.0 ? (sum.normal_force[0] + sum.normal_force[1]) / area : 0.0;
   sum.force_W = force;
+  for (int c = 0; c < 2; ++c) {
+    for (int i = 0; i < kNumDof; ++i) {
+      const DofModel& dof = model.carriages[c].dofs[i];
+      if (dof.mode != DofMode::kFree && dof.mode != DofMode::kForce) continue;
+      sum.omega_max = std::max(sum.omega_max, std::sqrt(stiffness[c][i] / dof.mass));
+    }
+  }
 
   // generalized forces: +force on the femur, -force on the tibia
   for (int c = 0; c < 2; ++c) {

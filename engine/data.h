@@ -23,6 +23,9 @@ struct ContactSummary {
   double max_penetration = 0.0;          // [m]
   double max_penetration_ratio = 0.0;    // max d / h [-]
   int elements_in_contact = 0;
+  // highest natural frequency of the contact over the free DOFs, sqrt(K_i / m_i) with the
+  // tangent stiffness K_i = sum_e A_e dp/dd (J_ei . n_e)^2; the stability monitor [rad/s]
+  double omega_max = 0.0;
 };
 
 struct Data {

@@ -34,6 +34,9 @@ RunResult simulate(const Model& model, State& state, Data& data, const RunOption
   for (long n = 0; n < total_steps; ++n) {
     const double t = state.time;
     const StepStatus status = step(model, state, data);
+    result.max_stability_ratio =
+        std::max(result.max_stability_ratio, calc_stability_ratio(model, data));
+    result.omega_max = std::max(result.omega_max, data.contact.omega_max);
     // data now describes time t (forces at the start of the step)
     if (t >= last_start - 0.5 * model.dt) {
       const double local = t - last_start;

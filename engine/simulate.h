@@ -38,6 +38,8 @@ struct RunResult {
   std::vector<std::vector<double>> maps;  // pressure per element [Pa], one per map_pcts
   long steps = 0;
   long evaluations = 0;               // contact element evaluations
+  double max_stability_ratio = 0.0;   // max over steps of omega_max dt / limit (< 1 stable)
+  double omega_max = 0.0;             // highest contact frequency met [rad/s]
 };
 
 Frame make_frame(const State& state, const Data& data);

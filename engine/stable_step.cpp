@@ -28,7 +28,7 @@ double position_femur_statically(const Model& model, State& state, Data& data, d
     lo -= 0.1e-3;
     if (force_at(lo) >= load || data.contact.max_penetration_ratio > 0.4) break;
   }
-  for (int it = 0; it < 36; ++it) {  // 20 mm / 2^36: sub-nanometre
+  for (int it = 0; it < 26; ++it) {  // 20 mm / 2^26: 0.3 nm
     const double mid = 0.5 * (lo + hi);
     if (force_at(mid) > load) {
       lo = mid;
@@ -95,6 +95,7 @@ StableStepReport calc_stable_time_step(const Model& model, double peak_load,
           report.stiffness_max = ki;
           report.governing_carriage = c;
           report.governing_dof = i;
+          report.governing_flexion = flexion;
         }
       }
     }

@@ -25,6 +25,7 @@ struct StableStepReport {
   double dt_critical = 0.0;     // 2 / omega_max with the damping correction [s]
   double dt = 0.0;              // safety * dt_critical [s]
   double damping_beta = 0.0;    // stiffness-proportional contact damping giving the ratio [s]
+  double governing_flexion = 0.0;  // flexion probe where omega_max was found [rad]
 };
 
 // moves the femoral carriage's IS DOF (state.carriages[0].pivot_W.y) so that the axial contact

@@ -148,6 +148,12 @@ bool is_finite(const State& state) {
 
 }  // namespace
 
+double calc_stability_ratio(const Model& model, const Data& data) {
+  const double w = data.contact.omega_max;
+  const double z = 0.5 * model.contact.damping_beta * w;
+  return w * model.dt / (2.0 * (std::sqrt(1.0 + z * z) - z));
+}
+
 const char* to_string(StepStatus status) {
   switch (status) {
     case StepStatus::kOk:
@@ -157,6 +163,8 @@ const char* to_string(StepStatus status) {
     case StepStatus::kRunawayMotion:
       return "runaway motion: a carriage moved more than 50 mm or tilted more than 60 deg from "
              "its start (lost contact, or the rig is unstable)";
+    case StepStatus::kUnstableStep:
+      return "the contact stiffened beyond the stability limit of the time step";
     case StepStatus::kRunawayPenetration:
       return "runaway penetration: the femoral component sank through the insert's elastic "
              "layer";
@@ -186,6 +194,7 @@ StepStatus step(const Model& model, State& state, Data& data) {
   // checks: NaN, runaway penetration
   if (!is_finite(state)) return StepStatus::kNotFinite;
   if (is_runaway(model, data)) return StepStatus::kRunawayMotion;
+  if (calc_stability_ratio(model, data) > 1.0) return StepStatus::kUnstableStep;
   // beyond 90 % of the distance field's exact band a deeper overlap could not be measured
   if (data.contact.max_penetration_ratio > model.contact.runaway_fraction ||
       data.contact.max_penetration > 0.9 * model.femur_sdf.band) {

@@ -7,7 +7,17 @@
 
 namespace kneesim::engine {
 
-enum class StepStatus { kOk, kNotFinite, kRunawayPenetration, kRunawayMotion };
+enum class StepStatus {
+  kOk,
+  kNotFinite,
+  kRunawayPenetration,
+  kRunawayMotion,
+  kUnstableStep,  // the contact stiffened beyond what the time step can integrate
+};
+
+// omega_max * dt over the central-difference limit 2 (sqrt(1 + z^2) - z) with the current
+// contact damping ratio z; above 1 the scheme is unstable
+double calc_stability_ratio(const Model& model, const Data& data);
 
 const char* to_string(StepStatus status);
 

@@ -191,6 +191,14 @@ std::vector<engine::RestraintSpring> make_restraint(const Config& c) {
   return out;
 }
 
+// a whole number of steps per gait cycle, so frames and cycles land on steps
+void apply_time_step(const engine::StableStepReport& r, engine::Model& m) {
+  m.contact.damping_beta = r.damping_beta;
+  m.dt_critical = r.dt_critical;
+  const long steps = static_cast<long>(std::ceil(m.period / r.dt));
+  m.dt = m.period / steps;
+}
+
 }  // namespace
 
 GenericTkrParams generic_params(const Config& c) {
@@ -237,6 +245,28 @@ engine::InsertSurface make_insert_surface(const TriMesh& insert, double base_y,
   }
   if (to_insert) *to_insert = sub.triangle_to_parent;
   if (vertex_to_insert) *vertex_to_insert = sub.vertex_to_parent;
+  return s;
+}
+
+engine::InsertSurface make_worn_insert_surface(const BuiltModel& pristine, const TriMesh& worn) {
+  const engine::InsertSurface& s0 = pristine.model.insert;
+  const auto& to_insert = pristine.implant.articular_to_insert;
+  engine::InsertSurface s = s0;
+  for (size_t v = 0; v < s.vertices_T.size(); ++v) {
+    s.vertices_T[v] = worn.vertices[pristine.implant.articular_vertex_to_insert[v]];
+  }
+  for (int e = 0; e < s.size(); ++e) {
+    const auto& t = worn.triangles[to_insert[e]];
+    const Eigen::Vector3d& a = worn.vertices[t[0]];
+    const Eigen::Vector3d& b = worn.vertices[t[1]];
+    const Eigen::Vector3d& c = worn.vertices[t[2]];
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double len = n.norm();
+    s.centroid_T[e] = (a + b + c) / 3.0;
+    s.normal_T[e] = len > 0.0 ? Eigen::Vector3d(n / len) : s0.normal_T[e];
+    s.area[e] = 0.5 * len;
+    s.thickness[e] = std::max(s.centroid_T[e].y(), 1e-4);
+  }
   return s;
 }
 
@@ -328,12 +358,12 @@ BuiltModel build_model(const Config& c) {
   }
   std::vector<double> probes;
   for (int i = 0; i < 5; ++i) probes.push_back(fe_min + (fe_max - fe_min) * i / 4.0);
-  out.stable_step = engine::calc_stable_time_step(m, std::max(peak_load, 100.0), probes,
-                                                  c.contact_damping_ratio, c.dt_safety);
-  m.contact.damping_beta = out.stable_step.damping_beta;
-  m.dt_critical = out.stable_step.dt_critical;
-  const long steps = static_cast<long>(std::ceil(m.period / out.stable_step.dt));
-  m.dt = m.period / steps;
+  out.peak_load = std::max(peak_load, 100.0);
+  out.damping_ratio = c.contact_damping_ratio;
+  out.dt_safety = c.dt_safety;
+  out.stable_step = engine::calc_stable_time_step(m, out.peak_load, probes, out.damping_ratio,
+                                                  out.dt_safety);
+  apply_time_step(out.stable_step, m);
 
   // the femur starts at rest on the insert under the t = 0 axial load
   {

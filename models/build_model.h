@@ -30,7 +30,9 @@ struct BuiltModel {
   MaterialConfig material;
   double build_seconds = 0.0;           // wall time of the build [s]
   double sdf_seconds = 0.0;             // of which the distance field [s]
-  int culled_elements = 0;              // articular elements dropped by BVH culling
+  double peak_load = 0.0;               // peak axial load of the gait [N]
+  double damping_ratio = 0.0;           // contact damping ratio [-]
+  double dt_safety = 0.8;               // fraction of the stability limit [-]
 };
 
 // builds everything; throws InputError for bad input (files named)
@@ -42,5 +44,13 @@ engine::InsertSurface make_insert_surface(const TriMesh& insert, double base_y,
                                           std::vector<int>* vertex_to_insert);
 
 GenericTkrParams generic_params(const Config& config);
+
+// the model with its insert replaced by a worn copy of the same mesh (same triangles, moved
+// vertices): the articular elements, their centroids, normals, areas and layer thickness are
+// recomputed; the femoral field, the rig and the time step are kept. A pure function of
+// (pristine, worn), so a resumed wear run rebuilds exactly the model it left.
+engine::InsertSurface make_worn_insert_surface(const BuiltModel& pristine, const TriMesh& worn);
+
+
 
 }  // namespace kneesim::models

@@ -86,6 +86,7 @@ void run(const RunArgs& a) {
   summary["cycles"] = config.cycles;
   summary["seconds"] = seconds;
   summary["seconds_per_cycle"] = seconds / config.cycles;
+  summary["max_stability_ratio"] = result.max_stability_ratio;
   summary["element_evaluations_per_step"] =
       static_cast<double>(result.evaluations) / std::max(1L, result.steps);
   if (result.status != engine::StepStatus::kOk) {

@@ -79,6 +79,21 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
   }
 
   auto in_set = [&](long k) { return p[k] > 0.0 && p[k] < cap; };
+  // gap tolerance of the complementarity check: a millionth of the gap's range
+  const auto [h_lo, h_hi] = std::minmax_element(h.begin(), h.end());
+  const double gap_tol = 1e-6 * (*h_hi - *h_lo) + 1e-15;
+  std::vector<long> order(n);
+  auto select_capped = [&](const std::vector<double>& defl) {
+    for (long k = 0; k < n; ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](long a, long b) { return h[a] + defl[a] < h[b] + defl[b]; });
+    double left = target / area;  // sum of p still to place [Pa]
+    std::fill(p.begin(), p.end(), 0.0);
+    for (long k = 0; k < n && left > 0.0; ++k) {
+      p[order[k]] = std::min(cap, left);
+      left -= p[order[k]];
+    }
+  };
   double g_old = 1.0;
   bool conjugate = false;
   for (int it = 1; it <= opt.max_iterations; ++it) {
@@ -86,10 +101,31 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     // gap on the current contact set, shifted to zero mean there
     op.apply(p.data(), u.data());
     const double n_set = row_sum(nx, ny, [&](long k) { return in_set(k) ? 1.0 : 0.0; });
-    if (n_set == 0.0) break;
-    const double mean_g = row_sum(nx, ny, [&](long k) { return in_set(k) ? u[k] + h[k] : 0.0; }) / n_set;
+    const double n_loaded = row_sum(nx, ny, [&](long k) { return p[k] > 0.0 ? 1.0 : 0.0; });
+    const double mean_g =
+        n_set > 0.0
+            ? row_sum(nx, ny, [&](long k) { return in_set(k) ? u[k] + h[k] : 0.0; }) / n_set
+            : 0.0;
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) gap[k] = u[k] + h[k] - mean_g;
+    // complementarity violations: open cells that overlap, capped cells that separate
+    const double violations = row_sum(nx, ny, [&](long k) {
+      return ((p[k] == 0.0 && gap[k] < -gap_tol) || (p[k] >= cap && gap[k] > gap_tol)) ? 1.0 : 0.0;
+    });
+    if (n_set == 0.0 || (n_set <= std::max(2.0, 0.002 * n_loaded) && violations > 0.0)) {
+      // (nearly) every loaded cell is at the cap, i.e. fully plastic contact, where the CG set
+      // is too small to steer: cap the cells of largest interference h + u that the load can
+      // hold and give the remainder to the next one, which reopens the CG set
+      p_old = p;
+      select_capped(u);
+      conjugate = false;
+      const double dp = row_sum(nx, ny, [&](long k) { return std::abs(p[k] - p_old[k]); });
+      if (area * dp <= opt.tolerance * target && violations == 0.0) {
+        res.converged = true;
+        break;
+      }
+      continue;
+    }
     const double g_norm = row_sum(nx, ny, [&](long k) { return in_set(k) ? gap[k] * gap[k] : 0.0; });
     // conjugate search direction
     const double beta = conjugate ? g_norm / g_old : 0.0;
@@ -121,16 +157,21 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     // impose the load on the cells below the cap
     const double w_cap = area * row_sum(nx, ny, [&](long k) { return p[k] >= cap ? cap : 0.0; });
     const double w_free = area * row_sum(nx, ny, [&](long k) { return p[k] < cap ? p[k] : 0.0; });
-    if (w_free > 0.0) {
+    if (w_free > 0.0 && target > w_cap) {
       const double s = (target - w_cap) / w_free;
 #pragma omp parallel for schedule(static)
       for (long k = 0; k < n; ++k) {
         if (p[k] < cap) p[k] = std::min(p[k] * s, cap);
       }
+    } else if (w_cap + w_free > 0.0) {
+      // the capped cells alone carry more than the load: scale all, releasing the cap
+      const double s = target / (w_cap + w_free);
+#pragma omp parallel for schedule(static)
+      for (long k = 0; k < n; ++k) p[k] = std::min(p[k], cap) * s;
     }
     // converged when the pressure no longer changes
     const double dp = row_sum(nx, ny, [&](long k) { return std::abs(p[k] - p_old[k]); });
-    if (area * dp <= opt.tolerance * target) {
+    if (area * dp <= opt.tolerance * target && violations == 0.0) {
       res.converged = true;
       break;
     }

@@ -1,0 +1,143 @@
+// `kneesim compare`: the same wear simulation for several insert materials, run concurrently
+// (one material per core), with a comparison table, a markdown report and plots.
+#include <cstdio>
+#include <exception>
+#include <sstream>
+#include <thread>
+
+#include "engine/errors.h"
+#include "models/config.h"
+#include "tools/io/atomic_file.h"
+#include "tools/io/json_out.h"
+#include "tools/io/plot.h"
+#include "tools/io/table.h"
+#include "tools/kneesim/commands.h"
+#include "tools/kneesim/wear_job.h"
+
+namespace kneesim::cli {
+namespace {
+
+struct CompareArgs {
+  std::string config;
+  std::string out = "kneesim-compare";
+  std::vector<std::string> materials{"uhmwpe", "peek", "cfr-peek"};
+  long cycles = 5'000'000;
+  long update_every = 250'000;
+  std::vector<std::string> sets;
+  int jobs = 0;
+  bool quiet = false;
+};
+
+void run(const CompareArgs& a) {
+  namespace fs = std::filesystem;
+  std::vector<models::Override> base;
+  for (const auto& s : a.sets) base.push_back(models::parse_override(s));
+  // every material is checked before any simulation starts
+  std::vector<WearJob> jobs;
+  for (const auto& m : a.materials) {
+    std::vector<models::Override> o = base;
+    o.push_back({"material.name", "\"" + m + "\""});
+    WearJob job;
+    job.config = models::load_config(a.config, o);
+    job.cycles = a.cycles;
+    job.update_every = a.update_every;
+    job.out = fs::path(a.out) / m;
+    job.quiet = true;
+    job.depth_maps = false;
+    std::ostringstream id;
+    id << "compare v1 " << m << " " << a.cycles << " " << a.update_every;
+    job.identity_text = id.str();
+    check_wear_job(job);
+    jobs.push_back(std::move(job));
+  }
+  fs::create_directories(a.out);
+  for (const char* f : {"comparison.csv", "comparison.md", "comparison.json"}) fs::remove(fs::path(a.out) / f);
+  std::vector<nlohmann::json> results(jobs.size());
+  std::vector<std::exception_ptr> errors(jobs.size());
+  const int workers =
+      a.jobs > 0 ? a.jobs : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  std::atomic<size_t> next{0};
+  for (int w = 0; w < workers; ++w) {
+    pool.emplace_back([&] {
+      for (size_t i = next++; i < jobs.size(); i = next++) {
+        try {
+          results[i] = run_wear_job(jobs[i]);
+          if (!a.quiet) {
+            std::fprintf(stderr, "%s done: %.1f mm^3 in %.1f s\n", a.materials[i].c_str(),
+                         results[i]["volume_mm3"].get<double>(),
+                         results[i]["seconds"].get<double>());
+          }
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      }
+    });
+  }
+  for (auto& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+
+  io::Table t;
+  t.label_name = "material";
+  t.columns = {"volume_mm3",      "mass_mg",          "max_depth_mm",
+               "wear_rate_mm3_per_Mc", "mean_peak_pressure_MPa", "peak_pressure_MPa",
+               "ap_rom_mm",       "ie_rom_mm",        "elastic_modulus_MPa",
+               "wear_factor_mm3_per_Nmm", "friction", "dt_s", "seconds"};
+  std::string md = "| material | volume (mm³) | mass (mg) | max depth (mm) | mean peak pressure "
+                   "(MPa) | AP ROM (mm) | IE ROM (deg) |\n|---|---|---|---|---|---|---|\n";
+  nlohmann::json all;
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    const auto& r = results[i];
+    const auto& mat = jobs[i].config.material;
+    t.label_column.push_back(a.materials[i]);
+    t.add_row({r["volume_mm3"], r["mass_mg"], r["max_depth_mm"], r["wear_rate_mm3_per_Mc"],
+               r["mean_peak_pressure_MPa"], r["peak_pressure_MPa"], r["ap_rom_mm"],
+               r["ie_rom_mm"], mat.elastic_modulus_MPa, mat.wear_factor_mm3_per_Nmm,
+               r["friction"], r["dt_s"], r["seconds"]});
+    char line[256];
+    std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.3f | %.1f | %.2f | %.2f |\n",
+                  a.materials[i].c_str(), r["volume_mm3"].get<double>(),
+                  r["mass_mg"].get<double>(), r["max_depth_mm"].get<double>(),
+                  r["mean_peak_pressure_MPa"].get<double>(), r["ap_rom_mm"].get<double>(),
+                  r["ie_rom_mm"].get<double>());
+    md += line;
+    all[a.materials[i]] = r;
+  }
+  std::ostringstream head;
+  head << "# kneesim compare\n\n" << a.cycles << " cycles, geometry update every "
+       << a.update_every << " cycles; same implant, rig and gait for every material.\n\n";
+  io::write_csv(fs::path(a.out) / "comparison.csv", t);
+  io::write_file_atomic(fs::path(a.out) / "comparison.md", head.str() + md);
+  std::vector<std::string> args = {a.out};
+  for (const auto& m : a.materials) args.push_back(m);
+  io::run_plot("compare.py", args);
+  io::write_json(fs::path(a.out) / "comparison.json", all);
+  if (!a.quiet) std::printf("%s%sresults in %s\n", head.str().c_str(), md.c_str(), a.out.c_str());
+}
+
+}  // namespace
+
+void add_compare_command(CLI::App& app) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare",
+      "The same wear simulation for several insert materials, concurrently (default: uhmwpe, "
+      "peek, cfr-peek; 5 million cycles). Writes DIR/comparison.csv, DIR/comparison.md, "
+      "DIR/comparison.json, plots (compare_wear.png, compare_kinematics.png, "
+      "compare_contact.png) and each material's wear outputs in DIR/<material>/.");
+  cmd->add_option("config", args->config, "TOML config file")->check(CLI::ExistingFile);
+  cmd->add_option("--materials", args->materials, "comma-separated material names")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--cycles", args->cycles, "total gait cycles")->capture_default_str();
+  cmd->add_option("--update-every", args->update_every, "cycles per geometry update")
+      ->capture_default_str();
+  cmd->add_option("--out", args->out, "output folder")->capture_default_str();
+  cmd->add_option("--set", args->sets, "override a config key (repeatable)");
+  cmd->add_option("--jobs", args->jobs, "materials simulated at once (default: all cores)");
+  cmd->add_flag("--quiet", args->quiet, "no per-material lines or table");
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace kneesim::cli

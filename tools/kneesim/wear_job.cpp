@@ -1,0 +1,211 @@
+#include "tools/kneesim/wear_job.h"
+
+#include <chrono>
+#include <cstdio>
+#include <numbers>
+
+#include "engine/errors.h"
+#include "models/build_model.h"
+#include "tools/io/json_out.h"
+#include "tools/io/plot.h"
+#include "tools/io/progress.h"
+#include "tools/io/table.h"
+#include "tools/io/vtp.h"
+#include "tools/kneesim/run_outputs.h"
+#include "wear/archard.h"
+#include "wear/checkpoint.h"
+#include "wear/geometry_update.h"
+#include "wear/wear_loop.h"
+
+namespace kneesim::cli {
+namespace {
+
+constexpr double kM3ToMm3 = 1e9;
+
+io::Table make_wear_table(const std::vector<wear::UpdateRecord>& records, double density) {
+  io::Table t;
+  t.columns = {"cycles",           "volume_mm3",        "volume_depth_mm3",
+               "mass_mg",          "max_depth_mm",      "medial_volume_mm3",
+               "lateral_volume_mm3", "contact_area_mm2", "peak_pressure_MPa",
+               "mean_peak_pressure_MPa", "ap_rom_mm",   "ie_rom_mm",
+               "refinements"};
+  for (const auto& r : records) {
+    t.add_row({r.cycles, r.volume * kM3ToMm3, r.volume_depth * kM3ToMm3,
+               r.volume * kM3ToMm3 * density, r.max_depth * 1e3, r.medial_volume * kM3ToMm3,
+               r.lateral_volume * kM3ToMm3, r.contact_area * 1e6, r.peak_pressure * 1e-6,
+               r.mean_peak_pressure * 1e-6, r.ap_rom * 1e3, r.ie_rom * 180.0 / std::numbers::pi,
+               r.refinements});
+  }
+  return t;
+}
+
+void write_depth_map(const std::filesystem::path& path, const engine::InsertSurface& s,
+                     const std::vector<double>& depth) {
+  io::VtpSurface v;
+  for (const auto& p : s.vertices_T) v.points_mm.push_back(p * 1e3);
+  v.triangles = s.triangles;
+  io::VtpArray d{"wear_depth_mm", {}};
+  for (double x : depth) d.values.push_back(x * 1e3);
+  v.point_data.push_back(std::move(d));
+  io::write_vtp(path, v);
+}
+
+// least-squares slope of volume against cycles through the updates after the first [mm3/Mc]
+double wear_rate(const std::vector<wear::UpdateRecord>& records) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (const auto& r : records) {
+    if (r.cycles <= 0) continue;
+    const double x = r.cycles * 1e-6, y = r.volume * kM3ToMm3;
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+    ++n;
+  }
+  if (n == 0) return 0.0;
+  if (n == 1) return sy / sx;
+  // through the origin when only few points: slope = sum xy / sum xx
+  return n < 3 ? sxy / sxx : (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+void clear_outputs(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(dir)) return;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name == "wear.csv" || name == "summary.json" || name == "wear.png" ||
+        name == "depth_map.png" || name == "final_depth.csv" || name == "wear.checkpoint" ||
+        name == "summary.failed.json" || name.rfind("wear_depth_", 0) == 0) {
+      fs::remove(e.path());
+    }
+  }
+}
+
+}  // namespace
+
+void check_wear_job(const WearJob& j) {
+  if (j.cycles <= 0) {
+    throw InputError("--cycles = " + std::to_string(j.cycles) + " is not allowed (a positive "
+                     "number of gait cycles)");
+  }
+  if (j.schedule.empty()) {
+    if (j.update_every <= 0) {
+      throw InputError("--update-every = " + std::to_string(j.update_every) +
+                       " is not allowed (a positive number of cycles per geometry update)");
+    }
+    if (j.update_every > j.cycles) {
+      throw InputError("--update-every = " + std::to_string(j.update_every) +
+                       " is larger than the run (--cycles = " + std::to_string(j.cycles) +
+                       "); allowed: 1 to " + std::to_string(j.cycles));
+    }
+  }
+  for (long s : j.schedule) {
+    if (s <= 0 || s > j.cycles) {
+      throw InputError("--schedule entry " + std::to_string(s) + " is not allowed (each "
+                       "interval must be 1 to --cycles = " + std::to_string(j.cycles) + ")");
+    }
+  }
+  const double k = j.config.material.wear_factor_mm3_per_Nmm;
+  if (!j.allow_any_wear_factor && (k < 1e-12 || k > 1e-6)) {
+    throw InputError("material '" + j.config.material.name + "' wear_factor_mm3_per_Nmm = " +
+                     std::to_string(k) + " is outside the plausible range 1e-12 to 1e-6 "
+                     "mm^3/(N mm); pass --allow-any-wear-factor to use it anyway");
+  }
+}
+
+nlohmann::json run_wear_job(const WearJob& j) {
+  namespace fs = std::filesystem;
+  check_wear_job(j);
+  const auto t0 = std::chrono::steady_clock::now();
+  bool resume = j.resume;
+  if (resume && !fs::exists(j.out / "wear.checkpoint")) {
+    // killed before the first update finished: nothing to resume, start afresh
+    if (!j.quiet) std::fprintf(stderr, "no checkpoint in %s yet: starting from cycle 0\n",
+                               j.out.string().c_str());
+    resume = false;
+  }
+  if (!resume) clear_outputs(j.out);
+  fs::create_directories(j.out);
+  const models::BuiltModel built = models::build_model(j.config);
+  const models::MaterialConfig& mat = built.material;
+  const double density_mg_per_mm3 = mat.density_g_per_cm3;  // g/cm^3 == mg/mm^3
+
+  wear::WearOptions o;
+  o.total_cycles = j.cycles;
+  o.update_every = j.update_every;
+  o.schedule = j.schedule;
+  o.law.law = wear::WearLaw::kArchard;
+  o.law.wear_factor = mat.wear_factor_mm3_per_Nmm * wear::kWearFactorSI;
+  o.law.friction = built.model.contact.friction;
+  o.checkpoint = j.out / "wear.checkpoint";
+  o.resume = resume;
+  o.identity = wear::fnv1a(j.identity_text.data(), j.identity_text.size());
+  io::ProgressBar bar("wear " + mat.name);
+  if (!j.quiet) o.progress = [&bar](double f) { bar.update(f); };
+  o.on_update = [&](const std::vector<wear::UpdateRecord>& records,
+                    const std::vector<double>& depth) {
+    io::write_csv(j.out / "wear.csv", make_wear_table(records, density_mg_per_mm3));
+    if (j.depth_maps) {
+      char name[64];
+      std::snprintf(name, sizeof name, "wear_depth_%09.0f.vtp", records.back().cycles);
+      write_depth_map(j.out / name, built.model.insert, depth);
+    }
+  };
+  const wear::WearResult result = wear::run_wear(built, o);
+  bar.finish();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  nlohmann::json summary = describe_model(built, j.config);
+  summary["cycles"] = j.cycles;
+  summary["update_every"] = j.update_every;
+  summary["updates"] = static_cast<int>(result.records.size()) - 1;
+  summary["seconds"] = seconds;
+  summary["wear_factor_mm3_per_Nmm"] = mat.wear_factor_mm3_per_Nmm;
+  summary["density_g_per_cm3"] = mat.density_g_per_cm3;
+  summary["sarkar_factor"] = wear::sarkar_factor(built.model.contact.friction);
+  if (result.resumed_from_update >= 0) summary["resumed_after_update"] = result.resumed_from_update;
+  if (result.status != engine::StepStatus::kOk) {
+    summary["status"] = "failed";
+    summary["failure"] = result.message;
+    io::write_json(j.out / "summary.failed.json", summary);
+    throw std::runtime_error("the wear simulation stopped: " + result.message +
+                             "; the updates completed so far are in " +
+                             (j.out / "wear.csv").string());
+  }
+  const wear::UpdateRecord& last = result.records.back();
+  const wear::UpdateRecord& first = result.records.front();
+  summary["wear_rate_mm3_per_Mc"] = wear_rate(result.records);
+  summary["volume_mm3"] = last.volume * kM3ToMm3;
+  summary["volume_depth_mm3"] = last.volume_depth * kM3ToMm3;
+  summary["volume_bookkeeping_rel_diff"] =
+      last.volume_depth > 0 ? (last.volume - last.volume_depth) / last.volume_depth : 0.0;
+  summary["mass_mg"] = last.volume * kM3ToMm3 * density_mg_per_mm3;
+  summary["max_depth_mm"] = last.max_depth * 1e3;
+  summary["medial_volume_mm3"] = last.medial_volume * kM3ToMm3;
+  summary["lateral_volume_mm3"] = last.lateral_volume * kM3ToMm3;
+  summary["mean_peak_pressure_MPa"] = first.mean_peak_pressure * 1e-6;
+  summary["peak_pressure_MPa"] = first.peak_pressure * 1e-6;
+  summary["ap_rom_mm"] = first.ap_rom * 1e3;
+  summary["ie_rom_mm"] = first.ie_rom * 180.0 / std::numbers::pi;
+  summary["final_ap_rom_mm"] = last.ap_rom * 1e3;
+  summary["final_ie_rom_mm"] = last.ie_rom * 180.0 / std::numbers::pi;
+  summary["status"] = "complete";
+
+  // final depth as points for the top-view contour plot
+  io::Table depth;
+  depth.columns = {"x_mm", "z_mm", "depth_mm"};
+  for (size_t v = 0; v < result.vertex_depth.size(); ++v) {
+    const auto& p = built.model.insert.vertices_T[v];
+    depth.add_row({p.x() * 1e3, p.z() * 1e3, result.vertex_depth[v] * 1e3});
+  }
+  io::write_csv(j.out / "final_depth.csv", depth);
+  io::write_csv(j.out / "kinematics.csv", make_kinematics_table(result.frames));
+  if (j.plots) {
+    io::run_plot("wear.py", {(j.out / "wear.csv").string(), (j.out / "final_depth.csv").string(),
+                             (j.out / "wear.png").string(), (j.out / "depth_map.png").string()});
+  }
+  io::write_json(j.out / "summary.json", summary);
+  fs::remove(o.checkpoint);  // complete: nothing to resume
+  return summary;
+}
+
+}  // namespace kneesim::cli

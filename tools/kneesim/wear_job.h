@@ -1,0 +1,35 @@
+// One wear simulation with all its outputs (wear.csv, summary.json, depth maps, plots,
+// checkpoint): shared by `kneesim wear` and by each material of `kneesim compare`.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "models/config.h"
+
+namespace kneesim::cli {
+
+struct WearJob {
+  models::Config config;
+  std::string identity_text;      // what defines the run (for the checkpoint identity)
+  long cycles = 5'000'000;
+  long update_every = 250'000;
+  std::vector<long> schedule;     // overrides update_every when not empty
+  std::filesystem::path out;
+  bool resume = false;
+  bool allow_any_wear_factor = false;
+  bool quiet = false;
+  bool plots = true;
+  bool depth_maps = true;         // a .vtp per update
+};
+
+// runs the job; returns the summary written to out/summary.json; throws InputError for bad
+// input and std::runtime_error when the simulation stops (what was complete is kept)
+nlohmann::json run_wear_job(const WearJob& job);
+
+// checks cycles, interval, schedule and wear factor; throws InputError with one sentence
+void check_wear_job(const WearJob& job);
+
+}  // namespace kneesim::cli

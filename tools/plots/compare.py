@@ -1,0 +1,53 @@
+"""Plots of `kneesim compare`: wear against cycles, AP and IE over the gait cycle, and contact
+area and peak pressure over the gait cycle, one line per material.
+
+usage: compare.py OUT_DIR MATERIAL [MATERIAL ...]
+"""
+import csv
+import os
+import sys
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0]}
+
+
+def main():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out, materials = sys.argv[1], sys.argv[2:]
+    wear = {m: read_csv(os.path.join(out, m, "wear.csv")) for m in materials}
+    kin = {m: read_csv(os.path.join(out, m, "kinematics.csv")) for m in materials}
+
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for m in materials:
+        ax.plot([c * 1e-6 for c in wear[m]["cycles"]], wear[m]["volume_mm3"], "o-", label=m)
+    ax.set_xlabel("cycles (millions)")
+    ax.set_ylabel("volumetric wear (mm$^3$)")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "compare_wear.png"), dpi=120)
+
+    for name, keys, labels in [
+        ("compare_kinematics.png", ("ap_mm", "ie_deg"), ("AP, tibia anterior (mm)", "IE, tibia internal (deg)")),
+        ("compare_contact.png", ("contact_area_mm2", "peak_pressure_MPa"), ("contact area (mm$^2$)", "peak pressure (MPa)")),
+    ]:
+        fig, axes = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+        for ax, key, label in zip(axes, keys, labels):
+            for m in materials:
+                ax.plot(kin[m]["gait_pct"], kin[m][key], label=m)
+            ax.set_ylabel(label)
+            ax.grid(alpha=0.3)
+            ax.legend()
+        axes[1].set_xlabel("gait cycle (%)")
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, name), dpi=120)
+
+
+if __name__ == "__main__":
+    main()

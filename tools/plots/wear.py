@@ -1,0 +1,53 @@
+"""Wear against cycles, and a top view of the final wear depth on the insert.
+
+usage: wear.py WEAR.csv FINAL_DEPTH.csv WEAR.png DEPTH_MAP.png
+"""
+import csv
+import sys
+
+
+def read_csv(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in rows[0]}
+
+
+def main():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import matplotlib.tri as mtri
+
+    wear_csv, depth_csv, wear_png, map_png = sys.argv[1:5]
+    w = read_csv(wear_csv)
+    mc = [c * 1e-6 for c in w["cycles"]]
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
+    ax1.plot(mc, w["volume_mm3"], "o-", label="total (enclosed volume)")
+    ax1.plot(mc, w["medial_volume_mm3"], "s--", label="medial")
+    ax1.plot(mc, w["lateral_volume_mm3"], "^--", label="lateral")
+    ax1.set_xlabel("cycles (millions)")
+    ax1.set_ylabel("volumetric wear (mm$^3$)")
+    ax1.grid(alpha=0.3)
+    ax1.legend()
+    ax2.plot(mc, w["max_depth_mm"], "o-")
+    ax2.set_xlabel("cycles (millions)")
+    ax2.set_ylabel("maximum linear wear (mm)")
+    ax2.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(wear_png, dpi=120)
+
+    d = read_csv(depth_csv)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    tri = mtri.Triangulation(d["z_mm"], d["x_mm"])
+    cs = ax.tricontourf(tri, d["depth_mm"], levels=20, cmap="viridis")
+    fig.colorbar(cs, ax=ax, label="wear depth (mm)")
+    ax.set_xlabel("medial  <-  z (mm)  ->  lateral")
+    ax.set_ylabel("posterior  <-  x (mm)  ->  anterior")
+    ax.set_aspect("equal")
+    ax.set_title("Final wear depth, top view of the insert")
+    fig.tight_layout()
+    fig.savefig(map_png, dpi=120)
+
+
+if __name__ == "__main__":
+    main()

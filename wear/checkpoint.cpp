@@ -1,0 +1,146 @@
+#include "wear/checkpoint.h"
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "engine/errors.h"
+#include "tools/io/atomic_file.h"
+
+namespace kneesim::wear {
+namespace {
+
+constexpr char kMagic[16] = "kneesim-wear-v1";
+
+class Writer {
+ public:
+  template <typename T>
+  void put(const T& v) {
+    bytes_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void put_doubles(const double* p, size_t n) {
+    bytes_.append(reinterpret_cast<const char*>(p), n * sizeof(double));
+  }
+  std::string& bytes() { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+class Reader {
+ public:
+  Reader(const std::string& bytes, const std::string& file) : b_(bytes), file_(file) {}
+  template <typename T>
+  T get() {
+    T v;
+    need(sizeof v);
+    std::memcpy(&v, b_.data() + pos_, sizeof v);
+    pos_ += sizeof v;
+    return v;
+  }
+  void get_doubles(double* p, size_t n) {
+    need(n * sizeof(double));
+    std::memcpy(p, b_.data() + pos_, n * sizeof(double));
+    pos_ += n * sizeof(double);
+  }
+  size_t count(size_t limit) {
+    const uint64_t n = get<uint64_t>();
+    if (n > limit) corrupt("a count of " + std::to_string(n) + " exceeds the file size");
+    return static_cast<size_t>(n);
+  }
+  [[noreturn]] void corrupt(const std::string& why) const {
+    throw InputError(file_ + ": corrupt wear checkpoint (" + why +
+                     "); delete it or run without --resume");
+  }
+
+ private:
+  void need(size_t n) const {
+    if (pos_ + n > b_.size()) corrupt("truncated");
+  }
+  const std::string& b_;
+  std::string file_;
+  size_t pos_ = 0;
+};
+
+}  // namespace
+
+uint64_t fnv1a(const void* data, size_t n, uint64_t h) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < n; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
+  Writer w;
+  w.bytes().append(kMagic, sizeof kMagic);
+  w.put(c.identity);
+  w.put(static_cast<int64_t>(c.cycles_done));
+  w.put(static_cast<int64_t>(c.next_update));
+  w.put(c.dt);
+  w.put(c.state.time);
+  w.put(static_cast<int64_t>(c.state.step));
+  for (const auto& cs : c.state.carriages) {
+    w.put_doubles(cs.pivot_W.data(), 3);
+    w.put_doubles(cs.R_WB.data(), 9);
+    w.put_doubles(cs.rate.data(), cs.rate.size());
+  }
+  w.put(static_cast<uint64_t>(c.insert_vertices.size()));
+  for (const auto& v : c.insert_vertices) w.put_doubles(v.data(), 3);
+  w.put(static_cast<uint64_t>(c.vertex_depth.size()));
+  w.put_doubles(c.vertex_depth.data(), c.vertex_depth.size());
+  w.put(static_cast<uint64_t>(c.records.size()));
+  for (const auto& r : c.records) w.put_doubles(&r.cycles, UpdateRecord::kFields);
+  const uint64_t hash = fnv1a(w.bytes().data(), w.bytes().size());
+  w.put(hash);
+  io::write_file_atomic(path, w.bytes());
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& path, uint64_t expected_identity) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": no wear checkpoint to resume from");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  const std::string bytes = ss.str();
+  Reader r(bytes, path.string());
+  if (bytes.size() < sizeof kMagic + sizeof(uint64_t) ||
+      std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) {
+    r.corrupt("not a kneesim wear checkpoint");
+  }
+  const size_t body = bytes.size() - sizeof(uint64_t);
+  uint64_t stored;
+  std::memcpy(&stored, bytes.data() + body, sizeof stored);
+  if (fnv1a(bytes.data(), body) != stored) r.corrupt("content hash mismatch");
+  Checkpoint c;
+  for (size_t i = 0; i < sizeof kMagic; ++i) r.get<char>();
+  c.identity = r.get<uint64_t>();
+  if (c.identity != expected_identity) {
+    throw InputError(path.string() + ": the checkpoint belongs to a different wear run (other "
+                     "config, material, cycles or update schedule); delete it or run without "
+                     "--resume");
+  }
+  c.cycles_done = r.get<int64_t>();
+  c.next_update = static_cast<int>(r.get<int64_t>());
+  c.dt = r.get<double>();
+  if (!(c.dt > 0.0)) r.corrupt("time step not positive");
+  c.state.time = r.get<double>();
+  c.state.step = r.get<int64_t>();
+  for (auto& cs : c.state.carriages) {
+    r.get_doubles(cs.pivot_W.data(), 3);
+    r.get_doubles(cs.R_WB.data(), 9);
+    r.get_doubles(cs.rate.data(), cs.rate.size());
+  }
+  const size_t limit = bytes.size() / sizeof(double);
+  c.insert_vertices.resize(r.count(limit));
+  for (auto& v : c.insert_vertices) r.get_doubles(v.data(), 3);
+  c.vertex_depth.resize(r.count(limit));
+  r.get_doubles(c.vertex_depth.data(), c.vertex_depth.size());
+  c.records.resize(r.count(limit));
+  for (auto& rec : c.records) r.get_doubles(&rec.cycles, UpdateRecord::kFields);
+  return c;
+}
+
+}  // namespace kneesim::wear

@@ -1,0 +1,71 @@
+#include "wear/wear_accumulator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "wear/archard.h"
+
+namespace kneesim::wear {
+
+WearAccumulator::WearAccumulator(int n, WearLawParams params)
+    : params_(params), depth_(n, 0.0), wxx_(n, 0.0), wxz_(n, 0.0), wzz_(n, 0.0) {}
+
+void WearAccumulator::observe(const engine::Model& model, const engine::State&,
+                              const engine::Data& data) {
+  const double dt = model.dt;
+  for (int e : data.in_contact) {
+    const double p = data.pressure[e];
+    const double ds = data.slip_speed[e] * dt;
+    if (p <= 0.0 || ds <= 0.0) continue;
+    // the pressure-dependent law weights each step by (p / p_ref)^-alpha
+    const double weight = params_.law == WearLaw::kPressureDependent
+                              ? std::pow(p / params_.p_ref, -params_.alpha)
+                              : 1.0;
+    depth_[e] += weight * p * ds;
+    const Eigen::Vector3d& v = data.slip_velocity_T[e];
+    const double vx = v.x(), vz = v.z(), v2 = vx * vx + vz * vz;
+    if (v2 > 0.0) {
+      const double w = p * ds / v2;
+      wxx_[e] += w * vx * vx;
+      wxz_[e] += w * vx * vz;
+      wzz_[e] += w * vz * vz;
+    }
+    work_ += p * model.insert.area[e] * ds;
+  }
+}
+
+std::vector<double> WearAccumulator::cross_shear_ratio() const {
+  // CS = smallest / total eigenvalue of the frictional-work tensor: the share of the work
+  // done perpendicular to the principal sliding direction
+  std::vector<double> cs(depth_.size(), 0.0);
+  for (size_t e = 0; e < depth_.size(); ++e) {
+    const double tr = wxx_[e] + wzz_[e];
+    if (tr <= 0.0) continue;
+    const double half = 0.5 * (wxx_[e] - wzz_[e]);
+    const double lo = 0.5 * tr - std::sqrt(half * half + wxz_[e] * wxz_[e]);
+    cs[e] = std::clamp(lo / tr, 0.0, 0.5);
+  }
+  return cs;
+}
+
+std::vector<double> WearAccumulator::depth_per_cycle() const {
+  const double sarkar = sarkar_factor(params_.friction);
+  std::vector<double> out(depth_.size(), 0.0);
+  std::vector<double> cs;
+  if (params_.law == WearLaw::kCrossShear) cs = cross_shear_ratio();
+  for (size_t e = 0; e < depth_.size(); ++e) {
+    double k = params_.wear_factor;
+    switch (params_.law) {
+      case WearLaw::kArchard:
+      case WearLaw::kPressureDependent:  // weighted per step in observe()
+        break;
+      case WearLaw::kCrossShear:  // needs the whole cycle's sliding path
+        k *= 1.0 + params_.beta * cs[e];
+        break;
+    }
+    out[e] = k * sarkar * depth_[e];
+  }
+  return out;
+}
+
+}  // namespace kneesim::wear

@@ -1,0 +1,50 @@
+// Accumulates Archard wear depth per insert articular element over the time steps of a
+// simulated cycle: an observer of engine::simulate (it reads Data, never writes the Model).
+// Depth per element is later spread to vertices (wear/geometry_update.h) with area weights,
+// which keeps the volume sum_e depth_e A_e unchanged.
+#pragma once
+
+#include <vector>
+
+#include "engine/data.h"
+#include "engine/model.h"
+#include "engine/state.h"
+
+namespace kneesim::wear {
+
+enum class WearLaw {
+  kArchard,          // constant k (the baseline)
+  kPressureDependent,  // k = k_ref (p / p_ref)^-alpha (Mazzucco & Spector 2003)
+  kCrossShear,       // k = k_ref * (1 + beta * CS) with the element's cross-shear ratio CS
+};
+
+struct WearLawParams {
+  WearLaw law = WearLaw::kArchard;
+  double wear_factor = 0.0;   // k or k_ref [m^2/N]
+  double friction = 0.07;     // mu in the Sarkar factor [-]
+  double p_ref = 10e6;        // reference pressure of the pressure-dependent law [Pa]
+  double alpha = 0.0;         // exponent of the pressure-dependent law [-]
+  double beta = 0.0;          // cross-shear gain [-]
+};
+
+class WearAccumulator {
+ public:
+  WearAccumulator(int n_elements, WearLawParams params);
+  // engine::RunOptions::observer: adds this step's increments of the elements in contact
+  void observe(const engine::Model& model, const engine::State& state, const engine::Data& data);
+  // depth per element accumulated over the observed cycle [m], n_elements
+  std::vector<double> depth_per_cycle() const;
+  // cross-shear ratio per element over the cycle [-] (0 for unidirectional sliding)
+  std::vector<double> cross_shear_ratio() const;
+  double sliding_work() const { return work_; }  // sum of p A ds over the cycle [J]
+
+ private:
+  WearLawParams params_;
+  std::vector<double> depth_;      // Archard-weighted p ds, per element [m]
+  // frictional-work tensor per element (x-z plane of T): sum of w v v^T / |v|^2 with
+  // w = p ds, from which the principal direction and cross-shear follow (Kang 2008)
+  std::vector<double> wxx_, wxz_, wzz_;
+  double work_ = 0.0;
+};
+
+}  // namespace kneesim::wear

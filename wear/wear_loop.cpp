@@ -1,0 +1,195 @@
+#include "wear/wear_loop.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tools/io/atomic_file.h"
+#include "wear/checkpoint.h"
+#include "wear/geometry_update.h"
+
+namespace kneesim::wear {
+namespace {
+
+// kinematic and contact figures of a simulated cycle into the record
+void fill_cycle_figures(const std::vector<engine::Frame>& frames, UpdateRecord& r) {
+  double ap_lo = 1e9, ap_hi = -1e9, ie_lo = 1e9, ie_hi = -1e9, area = 0.0, peaks = 0.0;
+  int n = 0;
+  for (const engine::Frame& f : frames) {
+    ap_lo = std::min(ap_lo, f.q[1][0]);
+    ap_hi = std::max(ap_hi, f.q[1][0]);
+    ie_lo = std::min(ie_lo, f.q[1][4]);
+    ie_hi = std::max(ie_hi, f.q[1][4]);
+    r.peak_pressure = std::max(r.peak_pressure, f.contact.peak_pressure);
+    if (f.contact.elements_in_contact > 0) {
+      area += f.contact.area[0] + f.contact.area[1];
+      peaks += f.contact.peak_pressure;
+      ++n;
+    }
+  }
+  r.ap_rom = frames.empty() ? 0.0 : ap_hi - ap_lo;
+  r.ie_rom = frames.empty() ? 0.0 : ie_hi - ie_lo;
+  r.contact_area = n ? area / n : 0.0;
+  r.mean_peak_pressure = n ? peaks / n : 0.0;
+}
+
+// volumes and depths of the cumulative depth field against the unworn mesh
+void fill_wear_figures(const engine::InsertSurface& surface, const std::vector<double>& depth,
+                       double volume0, const models::TriMesh& worn, UpdateRecord& r) {
+  const std::vector<double> area = vertex_areas(surface);
+  r.volume_depth = r.medial_volume = r.lateral_volume = r.max_depth = 0.0;
+  for (size_t v = 0; v < depth.size(); ++v) {
+    const double dv = depth[v] * area[v];
+    r.volume_depth += dv;
+    (surface.vertices_T[v].z() < 0.0 ? r.medial_volume : r.lateral_volume) += dv;
+    r.max_depth = std::max(r.max_depth, depth[v]);
+  }
+  r.volume = volume0 - models::enclosed_volume(worn);
+}
+
+// the largest step with the given safety for a contact frequency omega [rad/s]
+double stable_step_for(const engine::Model& model, double omega, double safety) {
+  const double z = 0.5 * model.contact.damping_beta * omega;
+  return safety * 2.0 / omega * (std::sqrt(1.0 + z * z) - z);
+}
+
+// a whole number of steps per cycle, never longer than `dt`
+void set_time_step(engine::Model& model, double dt) {
+  model.dt = model.period / std::ceil(model.period / dt);
+}
+
+// stability ratio above which the next update gets a shorter step
+constexpr double kStabilityHeadroom = 0.9;
+
+}  // namespace
+
+long update_interval(const WearOptions& o, int u) {
+  if (o.schedule.empty()) return o.update_every;
+  return o.schedule[std::min<size_t>(u, o.schedule.size() - 1)];
+}
+
+WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
+  WearResult result;
+  engine::Model model = pristine.model;
+  const engine::InsertSurface& surface0 = pristine.model.insert;
+  const double volume0 = models::enclosed_volume(pristine.implant.insert);
+  models::TriMesh insert = pristine.implant.insert;
+  std::vector<double> depth(surface0.vertices_T.size(), 0.0);
+  engine::State state = engine::make_initial_state(model);
+  long cycles_done = 0;
+  int u = 0;
+
+  if (o.resume) {
+    const Checkpoint c = read_checkpoint(o.checkpoint, o.identity);
+    cycles_done = c.cycles_done;
+    u = c.next_update;
+    state = c.state;
+    insert.vertices = c.insert_vertices;
+    depth = c.vertex_depth;
+    result.records = c.records;
+    result.resumed_from_update = u;
+    model.insert = models::make_worn_insert_surface(pristine, insert);
+  } else {
+    // cycle 0: one settling cycle on the unworn insert gives the initial kinematics
+    engine::Data data = engine::make_data(model);
+    engine::RunOptions ro;
+    ro.cycles = 1;
+    const engine::RunResult run = engine::simulate(model, state, data, ro);
+    if (run.status != engine::StepStatus::kOk) {
+      result.status = run.status;
+      result.message = engine::to_string(run.status);
+      return result;
+    }
+    UpdateRecord r;
+    fill_cycle_figures(run.frames, r);
+    result.records.push_back(r);
+    result.frames = run.frames;
+    if (o.on_update) o.on_update(result.records, depth);
+  }
+
+  while (cycles_done < o.total_cycles) {
+    // one cycle on the current geometry, accumulating the per-cycle depth; wear makes the
+    // insert more conforming and the contact stiffer, so when the stability monitor trips the
+    // cycle is repeated with the step the measured frequency allows
+    engine::RunResult run;
+    WearAccumulator acc(model.insert.size(), o.law);
+    for (int attempt = 0;; ++attempt) {
+      engine::State trial = state;
+      engine::Data data = engine::make_data(model);
+      acc = WearAccumulator(model.insert.size(), o.law);
+      engine::RunOptions ro;
+      ro.cycles = 1;
+      ro.observer = [&acc](const engine::Model& m, const engine::State& s,
+                           const engine::Data& d) { acc.observe(m, s, d); };
+      run = engine::simulate(model, trial, data, ro);
+      if (run.status == engine::StepStatus::kUnstableStep && attempt < 4) {
+        set_time_step(model, stable_step_for(model, run.omega_max, pristine.dt_safety));
+        continue;
+      }
+      state = trial;
+      break;
+    }
+    if (run.status != engine::StepStatus::kOk) {
+      result.status = run.status;
+      result.message = engine::to_string(run.status);
+      break;
+    }
+    // close to the limit: shrink the step for the next update before it trips
+    if (run.max_stability_ratio > kStabilityHeadroom) {
+      set_time_step(model, std::min(model.dt, stable_step_for(model, run.omega_max,
+                                                              pristine.dt_safety)));
+    }
+    result.frames = run.frames;
+    const std::vector<double> per_cycle = spread_to_vertices(model.insert, acc.depth_per_cycle());
+
+    // scale by the cycles of this update; halve them while a face would invert
+    long interval = std::min(update_interval(o, u), o.total_cycles - cycles_done);
+    const std::vector<Eigen::Vector3d> normals = articular_vertex_normals(model.insert);
+    RecessionResult rec;
+    int refinements = 0;
+    for (;;) {
+      std::vector<double> step_depth(per_cycle.size());
+      for (size_t v = 0; v < per_cycle.size(); ++v) step_depth[v] = per_cycle[v] * interval;
+      rec = recede(insert, pristine.implant.articular_vertex_to_insert, normals, step_depth);
+      if (rec.inverted_faces == 0 || interval <= 1) break;
+      interval = std::max(1L, interval / 2);
+      ++refinements;
+    }
+    if (rec.inverted_faces > 0) {
+      result.status = engine::StepStatus::kRunawayPenetration;
+      result.message = "a single wear cycle would invert " + std::to_string(rec.inverted_faces) +
+                       " insert faces";
+      break;
+    }
+    for (size_t v = 0; v < depth.size(); ++v) depth[v] += per_cycle[v] * interval;
+    insert = std::move(rec.insert);
+    model.insert = models::make_worn_insert_surface(pristine, insert);
+    cycles_done += interval;
+    ++u;
+
+    UpdateRecord r;
+    r.cycles = static_cast<double>(cycles_done);
+    r.refinements = refinements;
+    fill_cycle_figures(run.frames, r);
+    fill_wear_figures(surface0, depth, volume0, insert, r);
+    result.records.push_back(r);
+    if (o.on_update) o.on_update(result.records, depth);
+    if (!o.checkpoint.empty()) {
+      Checkpoint c;
+      c.identity = o.identity;
+      c.cycles_done = cycles_done;
+      c.next_update = u;
+      c.state = state;
+      c.insert_vertices = insert.vertices;
+      c.vertex_depth = depth;
+      c.records = result.records;
+      c.dt = model.dt;
+      write_checkpoint(o.checkpoint, c);
+    }
+    if (o.progress) o.progress(static_cast<double>(cycles_done) / o.total_cycles);
+  }
+  result.vertex_depth = depth;
+  result.worn = insert;
+  return result;
+}
+
+}  // namespace kneesim::wear

@@ -1,0 +1,69 @@
+// The wear outer loop (design.md "wear is an outer loop"): simulate one gait cycle on a const
+// Model while accumulating Archard depth, scale it by the cycles of this update, recede the
+// insert, rebuild the insert part of the Model, and continue. After every update the state
+// needed to continue is checkpointed atomically (wear/checkpoint.h), so a killed run resumes
+// to a bit-identical result.
+//
+// If an update would invert or collapse a face of the insert mesh, the update is refined: its
+// cycle count is halved (the per-cycle depth rate is kept) until no face inverts; the number
+// of refinements is reported per update.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/simulate.h"
+#include "models/build_model.h"
+#include "wear/wear_accumulator.h"
+
+namespace kneesim::wear {
+
+// one row of wear.csv (SI inside; converted at output)
+struct UpdateRecord {
+  double cycles = 0;               // cycles completed after this update
+  double volume = 0;               // enclosed-volume loss of the insert [m^3]
+  double volume_depth = 0;         // integral of the depth field [m^3]
+  double max_depth = 0;            // [m]
+  double medial_volume = 0;        // depth integral over the medial side [m^3]
+  double lateral_volume = 0;       // [m^3]
+  double contact_area = 0;         // mean over the simulated cycle's frames in contact [m^2]
+  double peak_pressure = 0;        // max over the cycle [Pa]
+  double mean_peak_pressure = 0;   // mean of the frame peaks [Pa]
+  double ap_rom = 0;               // [m]
+  double ie_rom = 0;               // [rad]
+  double refinements = 0;          // interval halvings needed to avoid inverted faces
+  static constexpr int kFields = 12;
+};
+
+struct WearOptions {
+  long total_cycles = 5'000'000;
+  std::vector<long> schedule;      // cycles per update, repeated last; empty -> update_every
+  long update_every = 250'000;
+  WearLawParams law;
+  uint64_t identity = 0;           // hash of everything that defines the run (checkpoints)
+  std::filesystem::path checkpoint;  // "" for none
+  bool resume = false;
+  std::function<void(double)> progress;
+  // after every update (and once at cycle 0, not again on resume): all records so far and the
+  // cumulative depth per articular vertex
+  std::function<void(const std::vector<UpdateRecord>&, const std::vector<double>&)> on_update;
+};
+
+struct WearResult {
+  engine::StepStatus status = engine::StepStatus::kOk;
+  std::string message;                  // why it stopped early
+  std::vector<UpdateRecord> records;    // cycle 0 first
+  std::vector<double> vertex_depth;     // cumulative, per articular vertex [m]
+  models::TriMesh worn;                 // the insert after the last update
+  std::vector<engine::Frame> frames;    // kinematics of the last simulated cycle
+  int resumed_from_update = -1;         // update index the run resumed after, -1 if fresh
+};
+
+// the interval of update number u (0-based)
+long update_interval(const WearOptions& options, int u);
+
+WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& options);
+
+}  // namespace kneesim::wear

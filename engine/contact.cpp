@@ -13,8 +13,14 @@ void update_contact_schedule(const Model& model, Data& data) {
   if (!data.schedule_valid) {
     std::fill(data.recheck_at.begin(), data.recheck_at.end(), data.motion);
     data.schedule_valid = true;
+  } else if (model.femur_radius > 0.0) {
+    // the step's motion seen from the femur, D = X_FT(n+1) X_FT(n)^-1, moves a point at p_F by
+    // at most angle(D) |p_F| + |t_D|; measured at |p_F| = femur_radius
+    const Eigen::Isometry3d D = X_FT * data.X_FT_prev.inverse();
+    const double angle = Eigen::AngleAxisd(D.linear()).angle();
+    data.motion += D.translation().norm() + angle * model.femur_radius;
   } else {
-    // bound on the displacement of any insert point relative to the femur over this step
+    // no femoral radius known: bound by the insert's own extent
     const Eigen::Isometry3d delta = data.X_FT_prev.inverse() * X_FT;
     const double angle = Eigen::AngleAxisd(delta.linear()).angle();
     data.motion += delta.translation().norm() + angle * data.insert_radius;
@@ -41,15 +47,20 @@ void calc_contact(const Model& model, const State& state, Data& data) {
   for (int i = 0; i < n; ++i) {
     const int e = data.due[i];
     const Eigen::Vector3d c_W = data.X_WT * s.centroid_T[e];
-    const double phi = model.femur_sdf.sample(X_FW * c_W);
+    const Eigen::Vector3d c_F = X_FW * c_W;
+    const double phi = model.femur_sdf.sample(c_F);
     const double d = -phi;
     if (d <= 0.0) {
       // out of contact: sleep until the motion could have closed the gap; beyond the fine
       // band the coarse field (less its interpolation error) tells the distance
       double gap = phi;
       if (phi >= model.femur_sdf.band) {
-        const double far = model.femur_far_sdf.sample(X_FW * c_W) - model.femur_far_sdf.spacing;
+        const double far = model.femur_far_sdf.sample(c_F) - model.femur_far_sdf.spacing;
         gap = std::max(phi, far);
+      }
+      if (model.femur_radius > 0.0) {
+        // a point farther from the femoral origin than femur_radius moves proportionally more
+        gap *= std::min(1.0, model.femur_radius / c_F.norm());
       }
       data.recheck_at[e] = data.motion + kLipschitz * gap;
       data.pressure[e] = 0.0;

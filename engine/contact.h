@@ -2,12 +2,15 @@
 // field) and elastic-foundation contact forces with regularized Coulomb friction (physics.md
 // section 4).
 //
-// Search: each step bounds how far any insert point can have moved relative to the femur,
-// |dt_FT| + angle(dR_FT) * max|p_T|, and accumulates it in data.motion. An element found at
-// distance phi > 0 is not looked at again until the motion has grown by kLipschitz * phi. Only
-// elements in or near contact are sampled every step. This replaced a global Verlet list
-// (refresh everything when the motion exceeds half a skin), which at ~150 mm/s of relative
-// motion during swing refreshed every ~8 steps and dominated the run time. FCL's BVH built the
+// Search: each step bounds how far insert points can have moved relative to the femur and
+// accumulates it in data.motion. With D = X_FT(n+1) X_FT(n)^-1 the step's motion seen from the
+// femur, a point at p_F moves at most angle(D) |p_F| + |t_D|; the accumulated measure uses
+// |p_F| = R (the femoral surface's largest radius), and an element at |p_F| > R sleeps
+// proportionally less. An element found at distance phi > 0 is not looked at again until the
+// motion has grown by kLipschitz * phi * min(1, R / |p_F|). Only elements in or near contact
+// are sampled every step. This replaced a global Verlet list (refresh everything when the
+// motion exceeds half a skin), which at ~150 mm/s of relative motion during swing refreshed
+// every ~8 steps and dominated the run time. FCL built the
 // distance field once; per step there is no tree traversal at all.
 //
 // Each insert surface element (triangle) is a spring of the elastic foundation: its centroid is

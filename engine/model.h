@@ -94,6 +94,7 @@ struct Model {
   InsertSurface insert;
   SignedDistanceField femur_sdf;           // femoral component, F frame, fine, narrow band
   SignedDistanceField femur_far_sdf;       // coarse and wide: how long far elements may sleep
+  double femur_radius = 0.0;               // max |p_F| of the femoral surface [m] (0: unknown)
   loads::Waveform gait;                    // periodic gait waveforms
   double period = 1.0;                     // gait cycle duration [s]
   double dt = 1e-4;                        // time step [s] (from calc_stable_time_step)

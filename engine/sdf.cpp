@@ -156,13 +156,20 @@ SignedDistanceField make_signed_distance_field(const std::vector<Eigen::Vector3d
       Eigen::Vector3d normal = (b - a).cross(c - a);
       const double normal_len = normal.norm();
       if (normal_len > 0.0) normal /= normal_len;
+      // and so does the distance to the triangle's bounding sphere
+      const Eigen::Vector3d centre = (a + b + c) / 3.0;
+      const double radius = std::sqrt(std::max(
+          {(a - centre).squaredNorm(), (b - centre).squaredNorm(), (c - centre).squaredNorm()}));
       for (long k = k0; k <= k1; ++k)
         for (long j = j0; j <= j1; ++j)
           for (long i = i0; i <= i1; ++i) {
             const long n = index(i, j, k);
             const Eigen::Vector3d p = sdf.origin + spacing * Eigen::Vector3d(i, j, k);
             const double plane = normal.dot(p - a);
-            if (plane * plane >= std::min(static_cast<double>(best[n]), band * band)) continue;
+            const double limit2 = std::min(static_cast<double>(best[n]), band * band);
+            if (plane * plane >= limit2) continue;
+            const double to_centre = (p - centre).norm() - radius;
+            if (to_centre > 0.0 && to_centre * to_centre >= limit2) continue;
             const double d2 = project_on_triangle(a, b, c, p).squared_distance;
             if (d2 < best[n]) {
               best[n] = static_cast<float>(d2);

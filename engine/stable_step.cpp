@@ -12,9 +12,11 @@ namespace kneesim::engine {
 
 double position_femur_statically(const Model& model, State& state, Data& data, double load) {
   // bisection on the femur height: contact force rises monotonically as it goes down
+  // the contact schedule follows the femur's moves like any motion: elements far from it stay
+  // asleep while the bisection homes in
+  data.schedule_valid = false;
   auto force_at = [&](double y) {
     state.carriages[0].pivot_W.y() = y;
-    data.schedule_valid = false;
     calc_forces(model, state, data);
     return data.contact.force_W.y();
   };

@@ -21,7 +21,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kMm = 1e-3;
 // the far field only decides how long distant elements may sleep (engine/contact.h)
 constexpr double kFarSpacing = 2.5e-3;  // [m]
-constexpr double kFarBand = 7e-3;    // [m]
+constexpr double kFarBand = 5e-3;    // [m]
 
 std::string config_name(const Config& c) {
   return c.file.empty() ? std::string("built-in config") : c.file.string();
@@ -296,6 +296,9 @@ BuiltModel build_model(const Config& c) {
                                                    c.sdf_spacing_mm * kMm, c.sdf_band_mm * kMm);
   m.femur_far_sdf = engine::make_signed_distance_field(
       out.implant.femur.vertices, out.implant.femur.triangles, kFarSpacing, kFarBand);
+  for (const auto& v : out.implant.femur.vertices) {
+    m.femur_radius = std::max(m.femur_radius, v.norm());
+  }
   out.sdf_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - sdf_start).count();
 

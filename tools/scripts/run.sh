@@ -3,4 +3,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 bash tools/scripts/setup.sh
-./build/tools/kneesim run --out out/run "$@"
+./build/tools/kneesim run --out kneesim-run "$@"

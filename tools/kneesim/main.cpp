@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
       "Every command runs on a built-in default implant when given no config.\n"
       "Units in files and options are in their names (ap_mm, pressure_MPa)."};
   app.require_subcommand(1);
+  app.failure_message(
+      [](const CLI::App*, const CLI::Error& e) { return "error: " + std::string(e.what()) + "\n"; });
   app.set_version_flag("--version", "kneesim 0.1.0");
   kneesim::cli::add_run_command(app);
   kneesim::cli::add_wear_command(app);

@@ -1,0 +1,91 @@
+// No heap allocation inside engine::step() (design.md). This file replaces the global
+// operator new (every form) and interposes malloc/calloc/realloc (glibc's __libc_* entry
+// points) with versions that count calls in a thread-safe atomic counter, so allocations by
+// std containers, Eigen's dynamic matrices (malloc) and the OpenMP runtime are all seen. The
+// replacements apply to the whole test_engine executable and only count. Reference: the
+// count over 2000 steps after a warm-up must be zero.
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "engine/step.h"
+#include "engine_fixtures.h"
+
+namespace {
+std::atomic<long> g_allocations{0};  // heap allocations in this process [-]
+}  // namespace
+
+extern "C" {
+void* __libc_malloc(size_t);
+void* __libc_calloc(size_t, size_t);
+void* __libc_realloc(void*, size_t);
+
+void* malloc(size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(n);
+}
+void* calloc(size_t n, size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(n, size);
+}
+void* realloc(void* p, size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, n);
+}
+}
+
+void* operator new(std::size_t n) {
+  if (void* p = malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return operator new(n); }
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return malloc(n == 0 ? 1 : n); }
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return malloc(n == 0 ? 1 : n); }
+void* operator new(std::size_t n, std::align_val_t a) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  const std::size_t al = static_cast<std::size_t>(a);
+  if (void* p = std::aligned_alloc(al, (n + al - 1) / al * al)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n, std::align_val_t a) { return operator new(n, a); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+
+using namespace kneesim;
+
+TEST_CASE("the allocation counter sees new, malloc and std containers") {
+  // the counter must be able to fail: a vector growth and a raw malloc are seen
+  const long before = g_allocations.load();
+  std::vector<double> v(100);
+  void* p = std::malloc(64);
+  std::free(p);
+  CHECK(g_allocations.load() - before >= 2);
+  CHECK(v.size() == 100u);
+}
+
+TEST_CASE("step() does not allocate") {
+  // default model at 2 mm edges, 300 warm-up steps (first full contact evaluation, OpenMP
+  // team creation), then 2000 counted steps (about 90 % of a gait cycle: stance and swing)
+  const models::BuiltModel built =
+      models::build_model(test::default_config({"implant.edge_length_mm=2", "solver.threads=2"}));
+  const engine::Model& model = built.model;
+  engine::State state = engine::make_initial_state(model);
+  engine::Data data = engine::make_data(model);
+  for (int i = 0; i < 300; ++i) REQUIRE(engine::step(model, state, data) == engine::StepStatus::kOk);
+  const long before = g_allocations.load();
+  int failures = 0;
+  for (int i = 0; i < 2000; ++i) failures += engine::step(model, state, data) != engine::StepStatus::kOk;
+  const long allocations = g_allocations.load() - before;
+  MESSAGE("step(): " << allocations << " heap allocations over 2000 steps (t = " << state.time
+                     << " s)");
+  CHECK(failures == 0);
+  CHECK(allocations == 0);
+}

@@ -1,11 +1,15 @@
 // `kneesim wear`: Sarkar-corrected Archard wear of the insert over millions of cycles with a
 // geometry update every N cycles, checkpointed after every update.
+#include <atomic>
 #include <cstdio>
+#include <exception>
 #include <sstream>
+#include <thread>
 
 #include "engine/errors.h"
 #include "models/config.h"
 #include "tools/io/atomic_file.h"
+#include "tools/io/table.h"
 #include "tools/kneesim/commands.h"
 #include "tools/kneesim/wear_job.h"
 
@@ -23,12 +27,78 @@ struct WearArgs {
   bool resume = false;
   bool allow_any_wear_factor = false;
   bool quiet = false;
+  std::vector<long> convergence;  // update intervals of a convergence study
 };
+
+// the same prediction at several update intervals, concurrently; the finest is the reference
+void run_convergence(const WearArgs& a, const std::vector<models::Override>& overrides) {
+  namespace fs = std::filesystem;
+  std::vector<WearJob> jobs;
+  for (long every : a.convergence) {
+    WearJob job;
+    job.config = models::load_config(a.config, overrides);
+    job.cycles = a.cycles;
+    job.update_every = every;
+    job.out = fs::path(a.out) / ("every_" + std::to_string(every));
+    job.quiet = true;
+    job.depth_maps = false;
+    job.allow_any_wear_factor = a.allow_any_wear_factor;
+    job.identity_text = "convergence " + std::to_string(every);
+    check_wear_job(job);
+    jobs.push_back(std::move(job));
+  }
+  std::vector<nlohmann::json> results(jobs.size());
+  std::vector<std::exception_ptr> errors(jobs.size());
+  std::atomic<size_t> next{0};
+  std::vector<std::thread> pool;
+  for (unsigned w = 0; w < std::max(1u, std::thread::hardware_concurrency()); ++w) {
+    pool.emplace_back([&] {
+      for (size_t i = next++; i < jobs.size(); i = next++) {
+        try {
+          results[i] = run_wear_job(jobs[i]);
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      }
+    });
+  }
+  for (auto& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  // reference: the shortest interval
+  size_t ref = 0;
+  for (size_t i = 1; i < jobs.size(); ++i)
+    if (jobs[i].update_every < jobs[ref].update_every) ref = i;
+  const double v_ref = results[ref]["volume_mm3"], d_ref = results[ref]["max_depth_mm"];
+  io::Table t;
+  t.columns = {"update_every", "updates", "volume_mm3", "max_depth_mm", "volume_change_pct",
+               "max_depth_change_pct", "seconds"};
+  std::string md = "| cycles per update | updates | volume (mm³) | max depth (mm) | volume vs "
+                   "finest | depth vs finest | time (s) |\n|---|---|---|---|---|---|---|\n";
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    const double v = results[i]["volume_mm3"], d = results[i]["max_depth_mm"];
+    const double dv = 100.0 * (v - v_ref) / v_ref, dd = 100.0 * (d - d_ref) / d_ref;
+    t.add_row({static_cast<double>(jobs[i].update_every), results[i]["updates"].get<double>(), v,
+               d, dv, dd, results[i]["seconds"].get<double>()});
+    char line[200];
+    std::snprintf(line, sizeof line, "| %ld | %d | %.2f | %.4f | %+.2f %% | %+.2f %% | %.1f |\n",
+                  jobs[i].update_every, results[i]["updates"].get<int>(), v, d, dv, dd,
+                  results[i]["seconds"].get<double>());
+    md += line;
+  }
+  io::write_csv(fs::path(a.out) / "convergence.csv", t);
+  io::write_file_atomic(fs::path(a.out) / "convergence.md", md);
+  if (!a.quiet) std::printf("%s", md.c_str());
+}
 
 void run(const WearArgs& a) {
   std::vector<models::Override> overrides;
   for (const auto& s : a.sets) overrides.push_back(models::parse_override(s));
   if (!a.material.empty()) overrides.push_back({"material.name", "\"" + a.material + "\""});
+  if (!a.convergence.empty()) {
+    run_convergence(a, overrides);
+    return;
+  }
   WearJob job;
   job.config = models::load_config(a.config, overrides);
   job.cycles = a.cycles;
@@ -81,6 +151,11 @@ void add_wear_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--set", args->sets, "override a config key (repeatable)");
   cmd->add_flag("--resume", args->resume, "continue from DIR/wear.checkpoint");
+  cmd->add_option("--convergence", args->convergence,
+                  "update-interval convergence study: run the prediction once per listed "
+                  "interval (e.g. 1000000,500000,250000,100000,50000) into DIR/every_<N>/ and "
+                  "write DIR/convergence.csv and .md (changes against the finest)")
+      ->delimiter(',');
   cmd->add_flag("--allow-any-wear-factor", args->allow_any_wear_factor,
                 "accept wear factors outside 1e-12..1e-6 mm^3/(N mm)");
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");

@@ -79,9 +79,11 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
   }
 
   auto in_set = [&](long k) { return p[k] > 0.0 && p[k] < cap; };
-  // gap tolerance of the complementarity check: a millionth of the gap's range
+  // complementarity check: gap tolerance 1e-5 of the gap's range, and a few violating cells
+  // (1e-4 of the grid) tolerated where plastic zones meet elastic cells
   const auto [h_lo, h_hi] = std::minmax_element(h.begin(), h.end());
-  const double gap_tol = 1e-6 * (*h_hi - *h_lo) + 1e-15;
+  const double gap_tol = 1e-5 * (*h_hi - *h_lo) + 1e-15;
+  const double allowed = std::floor(1e-4 * n);
   std::vector<long> order(n);
   auto select_capped = [&](const std::vector<double>& defl) {
     for (long k = 0; k < n; ++k) order[k] = k;
@@ -101,7 +103,6 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     // gap on the current contact set, shifted to zero mean there
     op.apply(p.data(), u.data());
     const double n_set = row_sum(nx, ny, [&](long k) { return in_set(k) ? 1.0 : 0.0; });
-    const double n_loaded = row_sum(nx, ny, [&](long k) { return p[k] > 0.0 ? 1.0 : 0.0; });
     const double mean_g =
         n_set > 0.0
             ? row_sum(nx, ny, [&](long k) { return in_set(k) ? u[k] + h[k] : 0.0; }) / n_set
@@ -112,15 +113,14 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     const double violations = row_sum(nx, ny, [&](long k) {
       return ((p[k] == 0.0 && gap[k] < -gap_tol) || (p[k] >= cap && gap[k] > gap_tol)) ? 1.0 : 0.0;
     });
-    if (n_set == 0.0 || (n_set <= std::max(2.0, 0.002 * n_loaded) && violations > 0.0)) {
-      // (nearly) every loaded cell is at the cap, i.e. fully plastic contact, where the CG set
-      // is too small to steer: cap the cells of largest interference h + u that the load can
+    if (n_set == 0.0) {
+      // every loaded cell is at the cap (fully plastic contact) and the CG set is empty: cap the cells of largest interference h + u that the load can
       // hold and give the remainder to the next one, which reopens the CG set
       p_old = p;
       select_capped(u);
       conjugate = false;
       const double dp = row_sum(nx, ny, [&](long k) { return std::abs(p[k] - p_old[k]); });
-      if (area * dp <= opt.tolerance * target && violations == 0.0) {
+      if (area * dp <= opt.tolerance * target && violations <= allowed) {
         res.converged = true;
         break;
       }
@@ -171,7 +171,7 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     }
     // converged when the pressure no longer changes
     const double dp = row_sum(nx, ny, [&](long k) { return std::abs(p[k] - p_old[k]); });
-    if (area * dp <= opt.tolerance * target && violations == 0.0) {
+    if (area * dp <= opt.tolerance * target && violations <= allowed) {
       res.converged = true;
       break;
     }

@@ -1,0 +1,171 @@
+#include "wear/particles/particle_model.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "engine/errors.h"
+#include "wear/particles/contact.h"
+#include "wear/particles/height_map.h"
+#include "wear/particles/stress.h"
+
+namespace kneesim::particles {
+namespace {
+
+// a surface: the measured map when given (must match the grid across sliding), else generated
+std::vector<double> make_body_surface(const BodySpec& body, const Grid& grid,
+                                      const std::string& source) {
+  if (body.surface_csv.empty()) return make_rough_surface(grid, body.roughness, source);
+  const HeightMap map = read_height_map(body.surface_csv);
+  if (map.grid.ny != grid.ny || std::abs(map.grid.dx - grid.dx) > 1e-6 * grid.dx ||
+      map.grid.nx < grid.nx) {
+    throw InputError(body.surface_csv + ": height map " + std::to_string(map.grid.nx) + " x " +
+                     std::to_string(map.grid.ny) + " does not fit the grid; it needs " +
+                     std::to_string(grid.ny) + " columns, at least " + std::to_string(grid.nx) +
+                     " rows and the grid spacing");
+  }
+  if (map.grid.nx == grid.nx) return map.height;
+  return std::vector<double>(map.height.begin(), map.height.begin() + grid.size());
+}
+
+}  // namespace
+
+double window_load(const ParticleModelConfig& c) {
+  return c.load / c.cylinder_length * (c.grid.ny * c.grid.dy);
+}
+
+SizeStats calc_size_stats(const std::vector<ParticleRecord>& particles, int first_iteration) {
+  SizeStats s;
+  for (const ParticleRecord& r : particles) {
+    if (r.iteration < first_iteration) continue;
+    ++s.particles;
+    s.eq_radius += r.particle.eq_radius;
+    s.length += r.particle.length;
+    s.width += r.particle.width;
+    s.thickness += r.particle.thickness;
+    s.volume += r.particle.volume;
+  }
+  if (s.particles > 0) {
+    const double n = static_cast<double>(s.particles);
+    s.eq_radius /= n, s.length /= n, s.width /= n, s.thickness /= n, s.volume /= n;
+  }
+  return s;
+}
+
+ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::string& source,
+                                       const std::function<void(double)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  const Grid& g = c.grid;
+  check_grid(g, c.nz, source);
+  const double load = window_load(c);
+  check_load(load, c.softer.hardness, g, source);
+  const int nx = g.nx, ny = g.ny;
+  const long n = g.size();
+
+  // surfaces: the cylinder's in the window, the worn track longer and periodic
+  Grid track_grid = g;
+  track_grid.nx = g.nx * std::max(1, c.track_factor);
+  const std::vector<double> cyl = make_body_surface(c.harder, g, source);
+  std::vector<double> track = make_body_surface(c.softer, track_grid, source);
+  const int ntrack = static_cast<int>(track.size() / ny);
+
+  DeflectionOperator op(g, c.harder.elastic, c.softer.elastic);
+  SubsurfaceStress stress(g, c.softer.elastic.poisson_ratio);
+  ContactOptions opt;
+  opt.load = load;
+  opt.hardness = c.softer.hardness;
+  opt.tolerance = 1e-6;
+  opt.max_iterations = 100;
+
+  ParticleModelResult res;
+  std::vector<double> h(n), p_prev;
+  std::vector<double> levels(static_cast<long>(c.nz) * n);
+  const int refine = std::max(1, c.refine);
+  std::vector<double> block_means;
+  int it = 0;
+  for (it = 1; it <= c.max_iterations; ++it) {
+    // gap: cylinder profile minus both rough surfaces at this track position
+    const long offset = static_cast<long>(it - 1) * c.slide_cells % ntrack;
+    for (int i = 0; i < nx; ++i) {
+      const long row = (offset + i) % ntrack;
+      const double xi = g.x(i);
+      for (int j = 0; j < ny; ++j) {
+        h[static_cast<long>(i) * ny + j] = xi * xi / (2.0 * c.cylinder_radius) -
+                                           cyl[static_cast<long>(i) * ny + j] -
+                                           track[row * ny + j];
+      }
+    }
+    // contact pressure (warm start from the previous iteration)
+    const ContactResult cr = solve_contact(op, h, opt, p_prev.empty() ? nullptr : &p_prev);
+    p_prev = cr.pressure;
+    // von Mises levels from the surface down until one has no yielded cell
+    stress.set_traction(cr.pressure, c.friction);
+    int computed = 0;
+    for (int k = 0; k < c.nz; ++k) {
+      double* vm = levels.data() + static_cast<long>(k) * n;
+      stress.calc_von_mises(k * c.dz, vm);
+      computed = k + 1;
+      const bool yielded = std::any_of(vm, vm + n, [&](double v) { return v > c.softer.yield_stress; });
+      if (!yielded && k >= 1) break;
+    }
+    // particles on the refined levels; their material leaves the track
+    const std::vector<double> fine(levels.begin(), levels.begin() + static_cast<long>(computed) * n);
+    const int nfine = (computed - 1) * refine;
+    const Detachment det = find_particles(refine_levels(fine, n, computed, refine), g, nfine,
+                                          c.dz / refine, c.softer.yield_stress);
+    for (int i = 0; i < nx; ++i) {
+      const long row = (offset + i) % ntrack;
+      for (int j = 0; j < ny; ++j) track[row * ny + j] -= det.removed_depth[static_cast<long>(i) * ny + j];
+    }
+    // records
+    IterationRecord rec;
+    rec.iteration = it;
+    rec.particles = static_cast<int>(det.particles.size());
+    for (const Particle& p : det.particles) {
+      res.particles.push_back({it, p});
+      rec.mean_eq_radius += p.eq_radius / det.particles.size();
+    }
+    rec.max_pressure = *std::max_element(cr.pressure.begin(), cr.pressure.end());
+    rec.contact_fraction = cr.contact_fraction;
+    rec.capped_fraction = cr.capped_fraction;
+    rec.cg_iterations = cr.iterations;
+    rec.stress_levels = computed;
+    res.iterations.push_back(rec);
+    if (it == 1) {
+      // maps of the first (unworn) contact for the plots: pressure, and a vM section
+      res.pressure = cr.pressure;
+      const long peak = std::max_element(cr.pressure.begin(), cr.pressure.end()) - cr.pressure.begin();
+      const int jp = static_cast<int>(peak % ny);
+      const int ns = std::min(c.nz, 24);
+      res.section_levels = ns;
+      res.von_mises_section.assign(static_cast<long>(ns) * nx, 0.0);
+      std::vector<double> vm(n);
+      for (int k = 0; k < ns; ++k) {
+        stress.calc_von_mises(k * c.dz, vm.data());
+        for (int i = 0; i < nx; ++i) res.von_mises_section[static_cast<long>(k) * nx + i] = vm[static_cast<long>(i) * ny + jp];
+      }
+    }
+    if (progress) progress(double(it) / c.max_iterations);
+    // steady state: block means of the equivalent radius
+    if (it % c.block == 0) {
+      const SizeStats b = calc_size_stats(res.particles, it - c.block + 1);
+      block_means.push_back(b.eq_radius);
+      const std::size_t nb = block_means.size();
+      if (it >= c.min_iterations && nb >= 2) {
+        const double prev = block_means[nb - 2], cur = block_means[nb - 1];
+        if (std::abs(cur - prev) <= c.steady_tolerance * std::max(prev, 1e-300)) {
+          res.steady_state = true;
+          break;
+        }
+      }
+    }
+  }
+  const int last = std::min(it, c.max_iterations);
+  res.steady_from = std::max(1, last - 2 * c.block + 1);
+  res.steady = calc_size_stats(res.particles, res.steady_from);
+  res.all = calc_size_stats(res.particles, 1);
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return res;
+}
+
+}  // namespace kneesim::particles

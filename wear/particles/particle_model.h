@@ -1,0 +1,74 @@
+// The wear loop of the particle-size study: contact of the harder body's rough cylinder on the
+// softer body's rough track, subsurface von Mises field in the softer body, detachment of the
+// surface-reaching yielded regions as particles, removal of their material from the track,
+// and again, until the particle-size statistics settle.
+//
+// Sliding: the contact window is fixed to the cylinder (whose roughness is unchanged, it is
+// the harder body) while the worn track, longer than the window and periodic, advances by
+// `slide_cells` per iteration, so each iteration meets partly new, partly worn track and the
+// track is run in over the laps. The steady state is declared when the mean equivalent
+// radius of a block of iterations differs from the previous block's by less than the
+// tolerance; the reported sizes are the means over the last two blocks.
+//
+// Cost control: stress levels are computed from the surface down and stop at the first level
+// with no yielded cell, since a surface-reaching region cannot pass through it.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "wear/particles/detachment.h"
+#include "wear/particles/pairs.h"
+
+namespace kneesim::particles {
+
+struct ParticleRecord {
+  int iteration = 0;  // [-]
+  Particle particle;
+};
+
+struct IterationRecord {
+  int iteration = 0;              // [-]
+  int particles = 0;              // detached this iteration [-]
+  double mean_eq_radius = 0.0;    // over this iteration's particles [m]
+  double max_pressure = 0.0;      // [Pa]
+  double contact_fraction = 0.0;  // [-]
+  double capped_fraction = 0.0;   // share at p = H [-]
+  int cg_iterations = 0;          // [-]
+  int stress_levels = 0;          // levels computed [-]
+};
+
+struct SizeStats {
+  long particles = 0;        // [-]
+  double eq_radius = 0.0;    // mean [m]
+  double length = 0.0;       // mean [m]
+  double width = 0.0;        // mean [m]
+  double thickness = 0.0;    // mean [m]
+  double volume = 0.0;       // mean [m^3]
+};
+
+struct ParticleModelResult {
+  std::vector<ParticleRecord> particles;
+  std::vector<IterationRecord> iterations;
+  SizeStats steady;               // means over the last two blocks
+  SizeStats all;                  // means over every particle
+  bool steady_state = false;      // block criterion met before max_iterations [-]
+  int steady_from = 0;            // first iteration of the reported window [-]
+  std::vector<double> pressure;   // first iteration's pressure, grid.size() [Pa]
+  std::vector<double> von_mises_section;  // first iteration: nz x nx at the y of peak p [Pa]
+  int section_levels = 0;         // levels in the section [-]
+  double seconds = 0.0;           // wall time [s]
+};
+
+// Throws InputError (naming `source`) for an unusable grid or a load above H x window area.
+ParticleModelResult run_particle_model(const ParticleModelConfig& config,
+                                       const std::string& source,
+                                       const std::function<void(double)>& progress = {});
+
+// the contact window's share of the cylinder load [N]
+double window_load(const ParticleModelConfig& config);
+
+// mean sizes of a set of particles
+SizeStats calc_size_stats(const std::vector<ParticleRecord>& particles, int first_iteration);
+
+}  // namespace kneesim::particles

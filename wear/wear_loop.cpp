@@ -87,6 +87,7 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
     depth = c.vertex_depth;
     result.records = c.records;
     result.resumed_from_update = u;
+    model.dt = c.dt;  // the step the run had adapted to (wear makes the contact stiffer)
     model.insert = models::make_worn_insert_surface(pristine, insert);
   } else {
     // cycle 0: one settling cycle on the unworn insert gives the initial kinematics

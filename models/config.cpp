@@ -361,6 +361,32 @@ const std::map<std::string, MaterialConfig>& library() {
   return lib;
 }
 
+std::map<std::string, std::vector<std::string>> read_conditions(const toml::table& root,
+                                                               const std::string& origin) {
+  std::map<std::string, std::vector<std::string>> out;
+  const toml::table* conds = root["conditions"].as_table();
+  if (!conds) return out;
+  for (const auto& [name, node] : *conds) {
+    const std::string key = "conditions." + std::string(name.str());
+    const toml::table* t = node.as_table();
+    const toml::array* set = t ? (*t)["set"].as_array() : nullptr;
+    if (!t || !set || t->size() != 1) {
+      throw InputError(origin + ": [" + key + "] must hold exactly one key, set = [\"key=value\""
+                       ", ...]");
+    }
+    std::vector<std::string> overrides;
+    for (const auto& item : *set) {
+      auto text = item.value<std::string>();
+      if (!text || text->find('=') == std::string::npos) {
+        throw InputError(origin + ": " + key + ".set entries must be strings \"key=value\"");
+      }
+      overrides.push_back(*text);
+    }
+    out[std::string(name.str())] = overrides;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::string> library_material_names() {
@@ -422,6 +448,8 @@ Config load_config(const std::filesystem::path& file, const std::vector<Override
     // user materials are tables of their own, read before the flat keys
     c.user_materials = read_material_tables(root, file.string(), "materials");
     root.erase("materials");
+    c.conditions = read_conditions(root, file.string());
+    root.erase("conditions");
     flatten(root, "", file.string(), flat);
   }
   for (const Override& o : overrides) {

@@ -95,6 +95,12 @@ struct Config {
   int threads = 1;                         // OpenMP threads for contact evaluation
   int cycles = 2;                          // gait cycles; outputs come from the last
 
+  // [conditions.<name>]: named variants of this config for multi-condition studies (knee-wear
+  // diagnosis): each is a list of "key=value" overrides, e.g.
+  //   [conditions.low_ie]
+  //   set = ["gait.ie_torque_scale=0.5"]
+  std::map<std::string, std::vector<std::string>> conditions;
+
   // [output]
   std::vector<double> map_pcts{0, 13, 24, 45, 60, 80};  // gait % of the pressure maps
   std::string measured_kinematics;        // optional overlay for the kinematics plot

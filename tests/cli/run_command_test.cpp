@@ -201,3 +201,23 @@ TEST_CASE("kneesim run rejects bad input with one line and no summary") {
     CHECK_FALSE(fs::exists(out / "kinematics.csv"));
   }
 }
+
+TEST_CASE("a run that fails numerically leaves no complete-looking result") {
+  // a 2 MPa insert cannot carry the gait load: the femur sinks through the elastic layer and
+  // the engine stops with runaway penetration; the CLI must exit non-zero with one line and
+  // keep only the partial files (kinematics.partial.csv, summary.failed.json)
+  TempDir tmp;
+  const fs::path out = tmp.path / "out";
+  const Result r = run_kneesim({"run", "--out", out.string(), "--quiet", "--set",
+                                "implant.edge_length_mm=3", "--set",
+                                "material.elastic_modulus_MPa=2"},
+                               tmp.path);
+  INFO("stderr: " << r.err);
+  CHECK(r.exit_code != 0);
+  CHECK(count_lines(r.err) == 1);
+  CHECK(r.err.find("runaway") != std::string::npos);
+  CHECK_FALSE(fs::exists(out / "summary.json"));
+  CHECK_FALSE(fs::exists(out / "kinematics.csv"));
+  CHECK_FALSE(fs::exists(out / "kinematics.png"));
+  CHECK(fs::exists(out / "summary.failed.json"));
+}

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "engine/errors.h"
+#include "models/mesh_io.h"
 #include "engine_fixtures.h"
 
 using namespace kneesim;
@@ -101,6 +102,26 @@ TEST_CASE("config errors name the file or key, the value and the allowed range")
         {"implant.kind=\"mesh\"", "implant.mesh.femur=\"" + missing.string() + "\"",
          "implant.mesh.insert=\"" + (tmp.path / "no_insert.stl").string() + "\""});
     check_mentions(input_error([&] { models::build_model(c); }), {"no_femur.stl"});
+  }
+  SUBCASE("open insert mesh where a closed one is required") {
+    // a box with its top face removed: 4 open edges; the femur a closed box
+    models::TriMesh open = test::make_box({-0.03, 0.0, -0.03}, {0.03, 0.01, 0.03});
+    open.triangles.erase(open.triangles.begin() + 6, open.triangles.begin() + 8);  // y = hi
+    const fs::path insert = tmp.path / "open_insert.stl", femur = tmp.path / "femur.stl";
+    models::save_mesh(insert, open);
+    models::save_mesh(femur, test::make_box({-0.02, 0.0, -0.02}, {0.02, 0.02, 0.02}));
+    const models::Config c = test::default_config(
+        {"implant.kind=\"mesh\"", "implant.mesh.femur=\"" + femur.string() + "\"",
+         "implant.mesh.insert=\"" + insert.string() + "\"", "implant.mesh.insert_closed=true"});
+    check_mentions(input_error([&] { models::build_model(c); }),
+                   {"open_insert.stl", "not closed", "4 open edges"});
+  }
+  SUBCASE("unreadable mesh file") {
+    const fs::path junk = tmp.write("junk.stl", "this is not a mesh\n");
+    const models::Config c = test::default_config(
+        {"implant.kind=\"mesh\"", "implant.mesh.femur=\"" + junk.string() + "\"",
+         "implant.mesh.insert=\"" + junk.string() + "\""});
+    check_mentions(input_error([&] { models::build_model(c); }), {"junk.stl"});
   }
   SUBCASE("mesh implant without mesh paths") {
     check_mentions(input_error([] { test::default_config({"implant.kind=mesh"}); }),

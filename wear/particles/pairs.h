@@ -35,9 +35,9 @@ struct ParticleModelConfig {
   int refine = 4;                 // voxels per level interval (interpolation) [-]
   int track_factor = 2;           // worn-track length / window length [-]
   int slide_cells = 30;           // track advance per iteration [cells]
-  int min_iterations = 16;        // [-]
-  int max_iterations = 24;        // [-]
-  int block = 8;                  // iterations per statistics block [-]
+  int min_iterations = 8;         // [-]
+  int max_iterations = 12;        // [-]
+  int block = 4;                  // iterations per statistics block [-]
   double steady_tolerance = 0.1;  // relative change of the block mean radius [-]
   std::string sources;            // where the inputs come from
 };

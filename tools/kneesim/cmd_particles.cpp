@@ -1,0 +1,167 @@
+// `kneesim particles`: the wear-particle size model (half-space BEM, von Mises criterion) for a
+// material pair; writes one row per particle, the per-iteration history, maps for the plots
+// and a JSON summary. Runs the steel-steel pair of the particle-size study at 10 N when given
+// no arguments.
+#include <omp.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "engine/errors.h"
+#include "tools/io/atomic_file.h"
+#include "tools/io/json_out.h"
+#include "tools/io/plot.h"
+#include "tools/io/progress.h"
+#include "tools/io/table.h"
+#include "tools/kneesim/commands.h"
+#include "wear/particles/fft.h"
+#include "wear/particles/particle_model.h"
+#include "wear/particles/particles_config.h"
+
+namespace kneesim::cli {
+namespace {
+
+namespace pt = kneesim::particles;
+
+struct ParticlesOptions {
+  std::string config;
+  std::string pair;
+  double load_N = -1.0;
+  std::string out = "particles_out";
+  int max_iterations = 0;
+  bool no_film = false;
+  bool no_plots = false;
+};
+
+std::string map_csv(const std::vector<double>& v, int rows, int cols, double scale) {
+  std::string out;
+  char buf[32];
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      std::snprintf(buf, sizeof buf, "%.6g", v[static_cast<long>(i) * cols + j] * scale);
+      out += buf;
+      out += j + 1 < cols ? "," : "\n";
+    }
+  }
+  return out;
+}
+
+nlohmann::json size_json(const pt::SizeStats& s) {
+  return {{"particles", s.particles},          {"mean_eq_radius_nm", s.eq_radius * 1e9},
+          {"mean_length_nm", s.length * 1e9},  {"mean_width_nm", s.width * 1e9},
+          {"mean_thickness_nm", s.thickness * 1e9}, {"mean_volume_um3", s.volume * 1e18}};
+}
+
+nlohmann::json body_json(const pt::BodySpec& b) {
+  return {{"material", b.material},
+          {"E_GPa", b.elastic.youngs_modulus / 1e9},
+          {"nu", b.elastic.poisson_ratio},
+          {"hardness_GPa", b.hardness / 1e9},
+          {"yield_GPa", b.yield_stress / 1e9},
+          {"rq_nm", b.roughness.rq * 1e9},
+          {"skewness", b.roughness.skewness},
+          {"kurtosis", b.roughness.kurtosis},
+          {"correlation_length_nm", b.roughness.correlation_length * 1e9},
+          {"film_thickness_nm", b.elastic.film_thickness * 1e9},
+          {"film_E_GPa", b.elastic.film_modulus / 1e9},
+          {"surface_csv", b.surface_csv}};
+}
+
+void run_particles(const ParticlesOptions& o) {
+  // inputs: config file or pair preset, then the command-line overrides
+  pt::ParticleModelConfig c =
+      o.config.empty() ? pt::make_pair_config(pt::parse_pair(o.pair.empty() ? "steel-steel" : o.pair, "--pair"))
+                       : pt::read_particle_config(o.config);
+  if (!o.config.empty() && !o.pair.empty()) {
+    throw InputError("--pair " + o.pair + " conflicts with the pair of " + o.config +
+                     "; give one of them");
+  }
+  if (o.load_N >= 0.0) c.load = o.load_N;
+  if (o.max_iterations > 0) c.max_iterations = o.max_iterations;
+  if (o.no_film) c.harder.elastic.film_thickness = c.softer.elastic.film_thickness = 0.0;
+  c.min_iterations = std::min(c.min_iterations, c.max_iterations);
+
+  // run
+  io::ProgressBar bar("particles " + c.pair);
+  const pt::ParticleModelResult r =
+      pt::run_particle_model(c, o.config.empty() ? "kneesim particles" : o.config,
+                             [&](double f) { bar.update(f); });
+  bar.finish();
+
+  // outputs
+  const std::filesystem::path dir(o.out);
+  io::Table parts;
+  parts.columns = {"iteration", "volume_um3", "eq_radius_nm", "length_nm", "width_nm", "thickness_nm"};
+  for (const pt::ParticleRecord& p : r.particles) {
+    parts.add_row({double(p.iteration), p.particle.volume * 1e18, p.particle.eq_radius * 1e9,
+                   p.particle.length * 1e9, p.particle.width * 1e9, p.particle.thickness * 1e9});
+  }
+  io::write_csv(dir / "particles.csv", parts);
+  io::Table its;
+  its.columns = {"iteration", "particles", "mean_eq_radius_nm", "max_pressure_MPa",
+                 "contact_fraction", "capped_fraction", "cg_iterations", "stress_levels"};
+  for (const pt::IterationRecord& it : r.iterations) {
+    its.add_row({double(it.iteration), double(it.particles), it.mean_eq_radius * 1e9,
+                 it.max_pressure / 1e6, it.contact_fraction, it.capped_fraction,
+                 double(it.cg_iterations), double(it.stress_levels)});
+  }
+  io::write_csv(dir / "iterations.csv", its);
+  io::write_file_atomic(dir / "pressure_map_MPa.csv",
+                        map_csv(r.pressure, c.grid.nx, c.grid.ny, 1e-6));
+  io::write_file_atomic(dir / "von_mises_section_MPa.csv",
+                        map_csv(r.von_mises_section, r.section_levels, c.grid.nx, 1e-6));
+
+  nlohmann::json j = size_json(r.steady);
+  j["iterations"] = r.iterations.size();
+  j["seconds"] = r.seconds;
+  j["steady_state"] = r.steady_state;
+  j["steady_from_iteration"] = r.steady_from;
+  j["all_particles"] = size_json(r.all);
+  j["pair"] = c.pair;
+  j["load_N"] = c.load;
+  j["window_load_N"] = pt::window_load(c);
+  j["friction"] = c.friction;
+  j["cylinder_radius_mm"] = c.cylinder_radius * 1e3;
+  j["cylinder_length_mm"] = c.cylinder_length * 1e3;
+  j["grid"] = {{"nx", c.grid.nx}, {"ny", c.grid.ny}, {"dx_nm", c.grid.dx * 1e9},
+               {"nz", c.nz}, {"dz_nm", c.dz * 1e9}, {"refine", c.refine}};
+  j["harder"] = body_json(c.harder);
+  j["softer"] = body_json(c.softer);
+  j["sources"] = c.sources;
+  j["fft_backend"] = pt::Fft2::backend();
+  j["threads"] = omp_get_max_threads();
+  j["section_dz_nm"] = c.dz * 1e9;
+  j["dx_nm"] = c.grid.dx * 1e9;
+  io::write_json(dir / "summary.json", j);
+
+  std::printf("%s at %g N: %ld particles in %zu iterations (%s), mean eq. radius %.0f nm, "
+              "length %.0f nm, width %.0f nm, thickness %.0f nm; %.1f s -> %s\n",
+              c.pair.c_str(), c.load, r.steady.particles, r.iterations.size(),
+              r.steady_state ? "steady" : "not steady at the iteration limit",
+              r.steady.eq_radius * 1e9, r.steady.length * 1e9, r.steady.width * 1e9,
+              r.steady.thickness * 1e9, r.seconds, dir.string().c_str());
+  if (!o.no_plots) io::run_plot("particles.py", {dir.string()});
+}
+
+}  // namespace
+
+void add_particles_command(CLI::App& app) {
+  auto opts = std::make_shared<ParticlesOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "particles",
+      "Wear-particle sizes from a rough-contact half-space BEM with the von Mises detachment "
+      "criterion (default: steel-steel at 10 N, the particle-size study's case)");
+  cmd->add_option("config", opts->config, "TOML config (see docs/particles.md)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--pair", opts->pair,
+                  "steel-steel|steel-brass|uhmwpe-cocr|peek-cocr|cfrpeek-cocr");
+  cmd->add_option("--load-N", opts->load_N, "normal load on the cylinder [N]");
+  cmd->add_option("--out", opts->out, "output folder")->capture_default_str();
+  cmd->add_option("--max-iterations", opts->max_iterations, "wear-loop iteration limit");
+  cmd->add_flag("--no-film", opts->no_film, "drop transfer films (homogeneous model)");
+  cmd->add_flag("--no-plots", opts->no_plots, "skip the PNG plots");
+  cmd->callback([opts]() { run_particles(*opts); });
+}
+
+}  // namespace kneesim::cli

@@ -1,0 +1,83 @@
+"""Plots of a `kneesim particles` run: size histogram, mean size vs iteration, and the contact
+pressure map with a von Mises section. Usage: particles.py OUT_DIR (reads its CSV/JSON)."""
+import csv
+import json
+import os
+import sys
+
+import matplotlib
+import matplotlib.pyplot as plt
+
+
+def read_table(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: [float(r[k]) for r in rows] for k in (rows[0].keys() if rows else [])}
+
+
+def read_map(path):
+    with open(path) as f:
+        return [[float(v) for v in line.split(",")] for line in f if line.strip()]
+
+
+def main(out):
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    parts = read_table(os.path.join(out, "particles.csv"))
+    its = read_table(os.path.join(out, "iterations.csv"))
+    title = f"{summary['pair']} at {summary['load_N']:g} N"
+
+    # size histogram
+    fig, ax = plt.subplots(figsize=(6, 4))
+    if parts:
+        ax.hist([parts["eq_radius_nm"], parts["length_nm"], parts["thickness_nm"]], bins=30,
+                label=["equivalent radius", "length", "thickness"], histtype="step")
+        ax.axvspan(100, 1000, color="0.9", zorder=0, label="0.1-1 um (most active)")
+    ax.set_xlabel("size [nm]")
+    ax.set_ylabel("particles")
+    ax.set_title(title)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "size_histogram.png"), dpi=120)
+
+    # mean size vs iteration
+    fig, ax = plt.subplots(figsize=(6, 4))
+    if its:
+        ax.plot(its["iteration"], its["mean_eq_radius_nm"], "o-", label="mean eq. radius")
+        ax2 = ax.twinx()
+        ax2.plot(its["iteration"], its["particles"], "s--", color="tab:orange", label="particles")
+        ax2.set_ylabel("particles per iteration")
+    ax.axvline(summary.get("steady_from_iteration", 1), color="0.5", ls=":")
+    ax.set_xlabel("iteration")
+    ax.set_ylabel("mean equivalent radius [nm]")
+    ax.set_title(title + " (dotted: start of the reported window)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "mean_size_vs_iteration.png"), dpi=120)
+
+    # pressure map and von Mises section
+    p = read_map(os.path.join(out, "pressure_map_MPa.csv"))
+    vm = read_map(os.path.join(out, "von_mises_section_MPa.csv"))
+    dx = summary["dx_nm"] / 1000.0
+    dz = summary["section_dz_nm"] / 1000.0
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.5))
+    nx, ny = len(p), len(p[0])
+    im = a1.imshow([list(r) for r in zip(*p)], origin="lower", cmap="viridis",
+                   extent=[0, nx * dx, 0, ny * dx], aspect="equal")
+    fig.colorbar(im, ax=a1, label="pressure [MPa]")
+    a1.set_xlabel("x (sliding) [um]")
+    a1.set_ylabel("y [um]")
+    a1.set_title("contact pressure (first iteration)")
+    im = a2.imshow(vm, origin="upper", cmap="magma", extent=[0, nx * dx, len(vm) * dz, 0],
+                   aspect="auto")
+    fig.colorbar(im, ax=a2, label="von Mises [MPa]")
+    sy = summary["softer"]["yield_GPa"] * 1000.0
+    a2.contour([[v for v in r] for r in vm], levels=[sy], colors="cyan", origin="upper",
+               extent=[0, nx * dx, len(vm) * dz, 0])
+    a2.set_xlabel("x (sliding) [um]")
+    a2.set_ylabel("depth [um]")
+    a2.set_title(f"von Mises section at the peak pressure (cyan: yield {sy:.0f} MPa)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "pressure_von_mises.png"), dpi=120)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])

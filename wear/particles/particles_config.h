@@ -1,0 +1,24 @@
+// The particle model's TOML configuration: a pair preset (pair = "steel-steel", ...) with any
+// of its inputs overridden. Keys carry their units:
+//
+//   pair = "steel-steel"          load_N = 10   friction = 0.16
+//   cylinder_radius_mm = 2        cylinder_length_mm = 6
+//   [grid]  nx ny dx_nm nz dz_nm refine
+//   [run]   min_iterations max_iterations block slide_cells track_factor steady_tolerance
+//   [harder] / [softer]  E_GPa nu hardness_GPa yield_GPa rq_nm skewness kurtosis
+//            correlation_length_nm seed film_thickness_nm film_E_GPa film_nu surface_csv
+//
+// This file is the particle module's only use of toml++.
+#pragma once
+
+#include <filesystem>
+
+#include "wear/particles/pairs.h"
+
+namespace kneesim::particles {
+
+// throws InputError naming the file, key and value for unreadable files, unknown pairs or
+// values out of range
+ParticleModelConfig read_particle_config(const std::filesystem::path& path);
+
+}  // namespace kneesim::particles

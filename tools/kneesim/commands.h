@@ -8,6 +8,7 @@
 namespace kneesim::cli {
 
 void add_run_command(CLI::App& app);
+void add_particles_command(CLI::App& app);
 void add_wear_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_bor_command(CLI::App& app);

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
       [](const CLI::App*, const CLI::Error& e) { return "error: " + std::string(e.what()) + "\n"; });
   app.set_version_flag("--version", "kneesim 0.1.0");
   kneesim::cli::add_run_command(app);
+  kneesim::cli::add_particles_command(app);
   kneesim::cli::add_wear_command(app);
   kneesim::cli::add_compare_command(app);
   kneesim::cli::add_bor_command(app);

@@ -57,6 +57,17 @@ void set_time_step(engine::Model& model, double dt) {
   model.dt = model.period / std::ceil(model.period / dt);
 }
 
+// first articular vertex whose height above the base fell below 10 % of its pristine height,
+// or -1
+int find_worn_through_vertex(const models::BuiltModel& pristine, const models::TriMesh& worn) {
+  const auto& map = pristine.implant.articular_vertex_to_insert;
+  for (size_t v = 0; v < map.size(); ++v) {
+    const double h0 = pristine.implant.insert.vertices[map[v]].y();
+    if (worn.vertices[map[v]].y() < 0.1 * h0) return static_cast<int>(v);
+  }
+  return -1;
+}
+
 // stability ratio above which the next update gets a shorter step
 constexpr double kStabilityHeadroom = 0.9;
 
@@ -154,6 +165,15 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
       if (rec.inverted_faces == 0 || interval <= 1) break;
       interval = std::max(1L, interval / 2);
       ++refinements;
+    }
+    // an elastic layer worn down to a tenth of its height has worn through: the foundation
+    // model (and the insert) no longer hold, and no interval refinement changes the outcome
+    if (const int v = find_worn_through_vertex(pristine, rec.insert); v >= 0) {
+      result.status = engine::StepStatus::kRunawayPenetration;
+      result.message = "the insert wore through after about " +
+                       std::to_string(cycles_done + interval) + " cycles (articular vertex " +
+                       std::to_string(v) + " is within 10 % of its height from the base)";
+      break;
     }
     if (rec.inverted_faces > 0) {
       result.status = engine::StepStatus::kRunawayPenetration;

@@ -146,3 +146,42 @@ TEST_CASE("sphere on an elastic foundation: spherical-cap volume (linear) and qu
   // the two laws differ by the nonlinear excess (d/h = 0.2 at the pole), far above the error
   CHECK(sphere_force_nonlinear(R, delta, kLayer, true) / (kK / kLayer * v_n) > 1.05);
 }
+
+TEST_CASE("sliding flat punch: friction opposes the slip, contact damping adds beta k v") {
+  // the box pressed by d slides at speed v along +x (femoral carriage AP rate) over the bed:
+  // the friction force on the femur is -mu F_n v / sqrt(v^2 + eps^2) along x (physics.md
+  // section 4), exact per element, so the total to 1e-9; a closing speed w adds the
+  // stiffness-proportional damping pressure beta (K/h) w to every element (linear law), while
+  // the reported pressure stays the elastic one
+  const models::TriMesh box = test::make_box({-15e-3, 0.0, -15e-3}, {15e-3, 10e-3, 15e-3});
+  const double d = 0.1e-3, half = 5e-3, area = 4.0 * half * half;
+  engine::Model m = make_contact_model(box, 0.5e-3, 1.5e-3, half, 10, kLayer - d,
+                                       engine::ContactLaw::kLinear);
+  m.contact.slip_regularization = 1e-3;
+  const double p = kK * d / kLayer, mu = m.contact.friction, eps = 1e-3;
+  for (double v : {1e-5, 1e-3, 0.1, -0.1}) {
+    engine::State s = engine::make_initial_state(m);
+    s.carriages[0].rate[0] = v;
+    engine::Data data = engine::make_data(m);
+    engine::calc_forces(m, s, data);
+    const double fn = data.contact.force_W.y();
+    CAPTURE(v);
+    CHECK(fn == doctest::Approx(p * area).epsilon(1e-5));
+    CHECK(data.contact.force_W.x() ==
+          doctest::Approx(-mu * fn * v / std::sqrt(v * v + eps * eps)).epsilon(1e-9));
+    CHECK(std::abs(data.contact.force_W.z()) < 1e-9 * fn);
+    // generalized force on the femoral AP DOF and the opposite on the tibia's
+    CHECK(data.generalized[0][0] == doctest::Approx(data.contact.force_W.x()).epsilon(1e-12));
+    CHECK(data.generalized[1][0] == doctest::Approx(-data.contact.force_W.x()).epsilon(1e-12));
+  }
+  // closing speed w (femur moving down): damping pressure beta K/h w on top of the elastic one
+  m.contact.damping_beta = 1e-4;
+  const double w = 0.01;
+  engine::State s = engine::make_initial_state(m);
+  s.carriages[0].rate[1] = -w;
+  engine::Data data = engine::make_data(m);
+  engine::calc_forces(m, s, data);
+  CHECK(data.contact.force_W.y() ==
+        doctest::Approx((p + m.contact.damping_beta * kK / kLayer * w) * area).epsilon(1e-5));
+  CHECK(data.contact.peak_pressure == doctest::Approx(p).epsilon(1e-5));
+}

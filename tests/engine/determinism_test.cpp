@@ -43,11 +43,13 @@ RunOutcome run_steps(const engine::Model& model, int steps) {
 }  // namespace
 
 TEST_CASE("final state hash is identical with 1 and 2 threads") {
-  // 1 mm insert edges: about 7000 articular elements, so every full re-evaluation of the
-  // contact schedule runs in parallel; 0.25 s of gait (heel strike to past the 13 % peak)
-  models::BuiltModel built = models::build_model(test::default_config({"implant.edge_length_mm=1"}));
+  // 1 mm insert edges: about 6600 articular elements, so every full re-evaluation of the
+  // contact schedule runs in parallel; 0.15 s of gait (heel strike and the load rise to the
+  // 13 % peak); a 0.6 mm distance field to keep the build short
+  models::BuiltModel built = models::build_model(
+      test::default_config({"implant.edge_length_mm=1", "contact.sdf_spacing_mm=0.6"}));
   engine::Model& model = built.model;
-  const int steps = static_cast<int>(0.25 / model.dt);
+  const int steps = static_cast<int>(0.15 / model.dt);
   model.threads = 1;
   const RunOutcome one = run_steps(model, steps);
   model.threads = 2;

@@ -43,6 +43,7 @@ RunResult simulate(const Model& model, State& state, Data& data, const RunOption
       if (next_frame < options.frames_per_cycle && local >= next_frame * frame_dt - 0.5 * model.dt) {
         result.frames.push_back(make_frame(state, data));
         result.frames.back().time = t;
+        result.frames.back().gait_pct = std::max(0.0, 100.0 * local / model.period);
         ++next_frame;
       }
       if (next_map < options.map_pcts.size() &&

@@ -37,6 +37,14 @@ TEST_CASE("default run: load balance, medial share and ranges of motion") {
   REQUIRE(result.status == engine::StepStatus::kOk);
   REQUIRE(result.frames.size() == 100);
 
+  // one frame per 1 %: frame i is the step nearest i % of the last cycle (within dt/2), and
+  // the first is the 0 % frame, not 100 %
+  const double half_step_pct = 50.0 * model.dt / model.period;
+  for (size_t i = 0; i < result.frames.size(); ++i) {
+    CAPTURE(i);
+    CHECK(std::abs(result.frames[i].gait_pct - static_cast<double>(i)) <= half_step_pct + 1e-9);
+  }
+
   constexpr double kDeg = 180.0 / std::numbers::pi;
   double ap_lo = 1e9, ap_hi = -1e9, ie_lo = 1e9, ie_hi = -1e9, medial = 0.0, lateral = 0.0;
   const engine::Frame* peak = &result.frames.front();

@@ -1,0 +1,152 @@
+// Running the built `kneesim` program from the CLI tests: found in the build tree above the
+// test binary (<build>/tools/kneesim), run to completion with std::system, or started in the
+// background (fork/exec) so that a test can SIGKILL it at a chosen moment.
+#pragma once
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace kneesim::test {
+
+namespace fs = std::filesystem;
+
+// the kneesim executable: the nearest ancestor of this test binary holding tools/kneesim
+inline fs::path find_kneesim() {
+  const fs::path self = fs::read_symlink("/proc/self/exe");
+  for (fs::path dir = self.parent_path(); !dir.empty() && dir != dir.root_path();
+       dir = dir.parent_path()) {
+    const fs::path candidate = dir / "tools" / "kneesim";
+    if (fs::is_regular_file(candidate) && ::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return {};
+}
+
+struct TempDir {
+  fs::path path;  // removed at the end of the test case
+  TempDir() {
+    std::random_device rd;
+    path = fs::temp_directory_path() /
+           ("kneesim_cli_wear_" + std::to_string(rd()) + std::to_string(rd()));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+inline std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+inline void spit(const fs::path& p, const std::string& bytes) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+inline int count_lines(const std::string& text) {
+  int n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+struct Result {
+  int exit_code = -1;      // -1 when killed by a signal
+  int signal = 0;          // the signal that ended it, 0 if it exited
+  std::string out, err;    // captured stdout and stderr
+  double seconds = 0.0;    // wall time
+};
+
+// starts kneesim with the arguments in the background, stdout and stderr into files of `dir`
+inline pid_t start_kneesim(const std::vector<std::string>& args, const fs::path& dir,
+                           const std::string& tag) {
+  const fs::path exe = find_kneesim();
+  if (exe.empty()) return -1;
+  const std::string out = (dir / (tag + ".stdout")).string();
+  const std::string err = (dir / (tag + ".stderr")).string();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(o, 1);
+    ::dup2(e, 2);
+    std::vector<std::string> all{exe.string()};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(exe.c_str(), argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+inline Result wait_kneesim(pid_t pid, const fs::path& dir, const std::string& tag,
+                           std::chrono::steady_clock::time_point t0) {
+  Result r;
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
+  r.out = slurp(dir / (tag + ".stdout"));
+  r.err = slurp(dir / (tag + ".stderr"));
+  return r;
+}
+
+// runs kneesim to completion
+inline Result run_kneesim(const std::vector<std::string>& args, const fs::path& dir,
+                          const std::string& tag = "run") {
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = start_kneesim(args, dir, tag);
+  if (pid < 0) return {};
+  return wait_kneesim(pid, dir, tag, t0);
+}
+
+// starts kneesim and SIGKILLs it as soon as `trigger` exists (polled every millisecond);
+// returns how it ended (signal == SIGKILL when the kill came first)
+inline Result kill_when_exists(const std::vector<std::string>& args, const fs::path& dir,
+                               const fs::path& trigger, const std::string& tag) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t pid = start_kneesim(args, dir, tag);
+  if (pid < 0) return {};
+  for (;;) {
+    if (fs::exists(trigger)) {
+      ::kill(pid, SIGKILL);
+      break;
+    }
+    int status = 0;
+    if (::waitpid(pid, &status, WNOHANG) == pid) {  // finished before the trigger appeared
+      Result r;
+      r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      r.out = slurp(dir / (tag + ".stdout"));
+      r.err = slurp(dir / (tag + ".stderr"));
+      return r;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return wait_kneesim(pid, dir, tag, t0);
+}
+
+inline std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  for (std::string cell; std::getline(ss, cell, sep);) out.push_back(cell);
+  return out;
+}
+
+}  // namespace kneesim::test

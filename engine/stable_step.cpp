@@ -86,7 +86,7 @@ StableStepReport calc_stable_time_step(const Model& model, double peak_load,
         if (dof.mode != DofMode::kFree && dof.mode != DofMode::kForce) continue;
         double ki = k[c][i];
         for (const RestraintSpring& s : model.restraint) {
-          if (c == 1 && (i == 0 || i == 4)) {
+          if (c == 1 && (i == 4 || (i == 0 && s.kind == RestraintKind::kTranslational))) {
             ki += std::max({s.k_inside, s.k_positive, s.k_negative}) *
                   (s.kind == RestraintKind::kTranslational && i == 4 ? s.z_arm * s.z_arm : 1.0);
           }

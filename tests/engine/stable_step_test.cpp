@@ -73,3 +73,42 @@ TEST_CASE("contact tangent stiffness matches a finite difference of the contact 
                                                   << k_fd << " N/m");
   CHECK(k[0][1] == doctest::Approx(k_fd).epsilon(0.02));
 }
+
+TEST_CASE("stable step of restraint springs alone: closed forms") {
+  // no insert: the only stiffness is the restraint on the tibial carriage. Reference:
+  // omega = sqrt(k / m) of each DOF, dt_critical = 2/omega_max (sqrt(1 + z^2) - z)
+  engine::Model m = test::make_locked_model(1e-4);
+  auto& tibia = m.carriages[1].dofs;
+  tibia[0].mode = engine::DofMode::kFree;  // AP, 0.01 kg
+  tibia[0].mass = 0.01;
+  tibia[4].mode = engine::DofMode::kFree;  // IE, 1 kg m^2
+  tibia[4].mass = 1.0;
+  SUBCASE("rotational IE spring: governs IE only, not AP") {
+    engine::RestraintSpring s;
+    s.kind = engine::RestraintKind::kRotational;
+    s.k_inside = s.k_positive = s.k_negative = 1e6;  // [N m/rad] -> omega 1000 rad/s
+    m.restraint.push_back(s);
+    const engine::StableStepReport r = engine::calc_stable_time_step(m, 100.0, {0.0}, 0.0, 0.8);
+    CHECK(r.governing_carriage == 1);
+    CHECK(r.governing_dof == 4);
+    CHECK(r.omega_max == doctest::Approx(1000.0).epsilon(1e-12));
+    CHECK(r.dt_critical == doctest::Approx(2e-3).epsilon(1e-12));
+  }
+  SUBCASE("pair of AP springs at +-z: AP k1 + k2, IE (k1 + k2) z^2") {
+    for (double z : {-0.04, 0.04}) {
+      engine::RestraintSpring s;
+      s.kind = engine::RestraintKind::kTranslational;
+      s.z_arm = z;
+      s.gap = 1e-3;
+      s.k_inside = 0.0;
+      s.k_positive = s.k_negative = 50.0;  // [N/m]: AP omega = sqrt(100 / 0.01) = 100 rad/s
+      m.restraint.push_back(s);
+    }
+    tibia[4].mass = 1e-6;  // IE omega = sqrt(100 * 0.0016 / 1e-6) = 400 rad/s
+    const double z = 0.3;
+    const engine::StableStepReport r = engine::calc_stable_time_step(m, 100.0, {0.0}, z, 0.8);
+    CHECK(r.governing_dof == 4);
+    CHECK(r.omega_max == doctest::Approx(400.0).epsilon(1e-12));
+    CHECK(r.dt_critical == doctest::Approx(2.0 / 400.0 * (std::sqrt(1.0 + z * z) - z)).epsilon(1e-12));
+  }
+}

@@ -185,3 +185,38 @@ TEST_CASE("sliding flat punch: friction opposes the slip, contact damping adds b
         doctest::Approx((p + m.contact.damping_beta * kK / kLayer * w) * area).epsilon(1e-5));
   CHECK(data.contact.peak_pressure == doctest::Approx(p).epsilon(1e-5));
 }
+
+TEST_CASE("regularized friction in the time loop: the explicit damper recurrence") {
+  // tibia (AP free, mass m) sliding slowly under the locked flat punch: for |v| << eps the
+  // friction force is -c v with c = mu N / eps, and the central-difference update of the
+  // half-step rate is exactly v(n+1/2) = (1 - c dt / m) v(n-1/2) (the force uses the lagged
+  // rate). Reference: that recurrence, to 1e-4 over 5 steps (the field's float storage puts
+  // ~3e-6 relative on N at d = 10 um; the friction's nonlinearity at |v| < 1e-3 eps is below
+  // 1e-6); it decays for dt < 2 m / c and grows beyond — the stability limit of the
+  // friction slope, which the step chosen from contact and spring stiffness does not include
+  // (engine/stable_step.h), hence a regularization eps large enough for the rig's step.
+  const models::TriMesh box = test::make_box({-15e-3, 0.0, -15e-3}, {15e-3, 10e-3, 15e-3});
+  const double d = 1e-5, half = 5e-3, eps = 1e-3, mass = 1.0;
+  engine::Model m = make_contact_model(box, 0.5e-3, 1.5e-3, half, 10, kLayer - d,
+                                       engine::ContactLaw::kLinear);
+  m.contact.slip_regularization = eps;
+  m.carriages[1].dofs[0].mode = engine::DofMode::kFree;
+  m.carriages[1].dofs[0].mass = mass;
+  const double normal = kK * d / kLayer * 4.0 * half * half;  // N [N]
+  const double c = m.contact.friction * normal / eps;        // [N s/m]
+  for (double ratio : {0.5, 1.5, 2.5}) {  // c dt / m
+    m.dt = ratio * mass / c;
+    engine::State s = engine::make_initial_state(m);
+    engine::Data data = engine::make_data(m);
+    const double v0 = 1e-4 * eps;
+    s.carriages[1].rate[0] = v0;
+    double v = v0;
+    for (int i = 0; i < 5; ++i) {
+      REQUIRE(engine::step(m, s, data) == engine::StepStatus::kOk);
+      CHECK(data.contact.force_W.y() == doctest::Approx(normal).epsilon(1e-5));
+      v *= 1.0 - ratio;
+      CAPTURE(ratio);
+      CHECK(s.carriages[1].rate[0] == doctest::Approx(v).epsilon(1e-4));
+    }
+  }
+}

@@ -6,10 +6,13 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
 #include "tests/cli_wear/cli_helpers.h"
+#include "wear/checkpoint.h"
 
+using namespace kneesim;
 using namespace kneesim::test;
 
 namespace {
@@ -93,9 +96,23 @@ TEST_CASE("kneesim wear: outputs; killed and resumed gives a byte-identical wear
     };
     std::string flipped = checkpoint;
     flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x10);
+    // a checkpoint of this very run (identity and hash valid) whose arrays do not fit the
+    // model: what a changed mesh file behind an unchanged config would leave (the identity
+    // hashes the config text, not the meshes it names)
+    std::string misfit;
+    {
+      uint64_t identity = 0;
+      std::memcpy(&identity, checkpoint.data() + 16, sizeof identity);  // after the magic
+      wear::Checkpoint c = wear::read_checkpoint(d2 / "wear.checkpoint", identity);
+      c.insert_vertices.resize(c.insert_vertices.size() / 2);
+      c.vertex_depth.resize(c.vertex_depth.size() / 2);
+      wear::write_checkpoint(tmp.path / "misfit.checkpoint", c);
+      misfit = slurp(tmp.path / "misfit.checkpoint");
+    }
     const std::vector<Variant> variants = {
         {"one byte flipped", flipped, {}, "250000", "corrupt"},
         {"truncated", checkpoint.substr(0, checkpoint.size() / 2), {}, "250000", "corrupt"},
+        {"valid but of another mesh size", misfit, {}, "250000", "wear.checkpoint"},
         {"another run (--update-every 500000)", checkpoint, {}, "500000", "different wear run"},
         {"another run (--set gait.period_s=1.2)", checkpoint, {"--set", "gait.period_s=1.2"},
          "250000", "different wear run"},

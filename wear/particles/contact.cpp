@@ -10,11 +10,12 @@
 namespace kneesim::particles {
 namespace {
 
-// fixed-order sum of f(k) over the grid: each row sequentially, then the rows in order
+// fixed-order sum of f(k) over the grid: each row sequentially, then the rows in order.
+// Serial on purpose: these memory-bound passes cost microseconds, while an OpenMP barrier on a
+// machine shared with other jobs can cost milliseconds; the FFT passes carry the threads.
 template <class F>
 double row_sum(int nx, int ny, F f) {
   std::vector<double> rows(nx);
-#pragma omp parallel for schedule(static)
   for (int i = 0; i < nx; ++i) {
     double s = 0.0;
     for (int j = 0; j < ny; ++j) s += f(static_cast<long>(i) * ny + j);
@@ -79,11 +80,18 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
   }
 
   auto in_set = [&](long k) { return p[k] > 0.0 && p[k] < cap; };
-  // complementarity check: gap tolerance 1e-5 of the gap's range, and a few violating cells
-  // (1e-4 of the grid) tolerated where plastic zones meet elastic cells
+  // complementarity check: gap tolerance 1e-5 of the gap's range
   const auto [h_lo, h_hi] = std::minmax_element(h.begin(), h.end());
   const double gap_tol = 1e-5 * (*h_hi - *h_lo) + 1e-15;
-  const double allowed = std::floor(1e-4 * n);
+  // violations allowed at convergence: none needed for elastic contact, where the pressure
+  // change alone is the criterion (Polonsky & Keer); with capped cells a small share (1e-4 of
+  // the grid plus 2 % of the loaded cells) where plastic zones meet elastic cells
+  auto allowed_violations = [&]() {
+    const double capped = row_sum(nx, ny, [&](long k) { return p[k] >= cap ? 1.0 : 0.0; });
+    if (capped == 0.0) return std::numeric_limits<double>::infinity();
+    const double loaded = row_sum(nx, ny, [&](long k) { return p[k] > 0.0 ? 1.0 : 0.0; });
+    return std::floor(1e-4 * n) + 0.02 * loaded;
+  };
   std::vector<long> order(n);
   auto select_capped = [&](const std::vector<double>& defl) {
     for (long k = 0; k < n; ++k) order[k] = k;
@@ -107,7 +115,6 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
         n_set > 0.0
             ? row_sum(nx, ny, [&](long k) { return in_set(k) ? u[k] + h[k] : 0.0; }) / n_set
             : 0.0;
-#pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) gap[k] = u[k] + h[k] - mean_g;
     // complementarity violations: open cells that overlap, capped cells that separate
     const double violations = row_sum(nx, ny, [&](long k) {
@@ -120,7 +127,7 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
       select_capped(u);
       conjugate = false;
       const double dp = row_sum(nx, ny, [&](long k) { return std::abs(p[k] - p_old[k]); });
-      if (area * dp <= opt.tolerance * target && violations <= allowed) {
+      if (area * dp <= opt.tolerance * target && violations <= allowed_violations()) {
         res.converged = true;
         break;
       }
@@ -129,7 +136,6 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     const double g_norm = row_sum(nx, ny, [&](long k) { return in_set(k) ? gap[k] * gap[k] : 0.0; });
     // conjugate search direction
     const double beta = conjugate ? g_norm / g_old : 0.0;
-#pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) t[k] = in_set(k) ? gap[k] + beta * t[k] : 0.0;
     g_old = g_norm;
     // step length from the deflection of the direction
@@ -139,7 +145,6 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     const double gt = row_sum(nx, ny, [&](long k) { return in_set(k) ? gap[k] * t[k] : 0.0; });
     const double tau = rt != 0.0 ? gt / rt : 0.0;
     p_old = p;
-#pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) {
       if (in_set(k)) p[k] = std::clamp(p[k] - tau * t[k], 0.0, cap);
     }
@@ -148,7 +153,6 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
       return (p_old[k] == 0.0 && gap[k] < 0.0) ? 1.0 : 0.0;
     });
     conjugate = n_enter == 0.0;
-#pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) {
       if (p_old[k] == 0.0 && gap[k] < 0.0) p[k] = std::min(-tau * gap[k], cap);
       // capped cells whose gap opens are released below the cap
@@ -159,19 +163,17 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     const double w_free = area * row_sum(nx, ny, [&](long k) { return p[k] < cap ? p[k] : 0.0; });
     if (w_free > 0.0 && target > w_cap) {
       const double s = (target - w_cap) / w_free;
-#pragma omp parallel for schedule(static)
       for (long k = 0; k < n; ++k) {
         if (p[k] < cap) p[k] = std::min(p[k] * s, cap);
       }
     } else if (w_cap + w_free > 0.0) {
       // the capped cells alone carry more than the load: scale all, releasing the cap
       const double s = target / (w_cap + w_free);
-#pragma omp parallel for schedule(static)
       for (long k = 0; k < n; ++k) p[k] = std::min(p[k], cap) * s;
     }
     // converged when the pressure no longer changes
     const double dp = row_sum(nx, ny, [&](long k) { return std::abs(p[k] - p_old[k]); });
-    if (area * dp <= opt.tolerance * target && violations <= allowed) {
+    if (area * dp <= opt.tolerance * target && violations <= allowed_violations()) {
       res.converged = true;
       break;
     }

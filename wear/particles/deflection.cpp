@@ -218,7 +218,6 @@ void DeflectionOperator::apply(const double* p, double* u) const {
   }
   fft_.forward(pad_.data(), spec_.data(), nx);
   const long n = static_cast<long>(spec_.size());
-#pragma omp parallel for schedule(static)
   for (long k = 0; k < n; ++k) spec_[k] *= kernel_hat_[k];
   fft_.inverse(spec_.data(), pad_.data(), nx);
   for (int i = 0; i < nx; ++i) {

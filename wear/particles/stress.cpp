@@ -103,7 +103,6 @@ void SubsurfaceStress::calc_stress(double z, std::array<std::vector<double>, 6>&
 void SubsurfaceStress::calc_von_mises(double z, double* vm) const {
   calc_stress(z, comp_);
   const long n = grid_.size();
-#pragma omp parallel for schedule(static)
   for (long k = 0; k < n; ++k) {
     vm[k] = von_mises(comp_[0][k], comp_[1][k], comp_[2][k], comp_[3][k], comp_[4][k],
                       comp_[5][k]);

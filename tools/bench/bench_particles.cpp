@@ -1,0 +1,164 @@
+// Benchmark of the particle BEM (issue 5 targets on this machine, Release):
+//   a 256 x 256 rough contact solve <= 0.5 s, the 256 x 256 x 64 von Mises field <= 2 s;
+// medians of repeated runs, plus the one-off operator set-up, and a grid convergence study
+// 80^2 .. 320^2 over the same physical window (surfaces generated at 320^2 and resampled).
+// Usage: bench_particles [repeats=5] [--no-convergence]
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "wear/particles/contact.h"
+#include "wear/particles/detachment.h"
+#include "wear/particles/pairs.h"
+#include "wear/particles/particle_model.h"
+#include "wear/particles/stress.h"
+#include "wear/particles/surface.h"
+
+using namespace kneesim::particles;
+
+namespace {
+
+double cpu_now() {
+  timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+// wall seconds of f; also accumulates its process CPU seconds (all threads) into *cpu, which
+// on a machine shared with other jobs is the better measure of the work done
+double seconds_of(const std::function<void()>& f, double* cpu = nullptr) {
+  const double c0 = cpu_now();
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  if (cpu != nullptr) *cpu = cpu_now() - c0;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// periodic bilinear resampling of a square n-by-n map to m-by-m over the same window
+std::vector<double> resample(const std::vector<double>& src, int n, int m) {
+  std::vector<double> out(static_cast<long>(m) * m);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      const double si = (i + 0.5) * n / m - 0.5, sj = (j + 0.5) * n / m - 0.5;
+      const int i0 = static_cast<int>(std::floor(si)), j0 = static_cast<int>(std::floor(sj));
+      const double a = si - i0, b = sj - j0;
+      auto at = [&](int ii, int jj) { return src[static_cast<long>((ii + n) % n) * n + (jj + n) % n]; };
+      out[static_cast<long>(i) * m + j] = (1 - a) * (1 - b) * at(i0, j0) + a * (1 - b) * at(i0 + 1, j0) +
+                                          (1 - a) * b * at(i0, j0 + 1) + a * b * at(i0 + 1, j0 + 1);
+    }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repeats = argc > 1 && argv[1][0] != '-' ? std::atoi(argv[1]) : 5;
+  bool convergence = true;
+  for (int a = 1; a < argc; ++a) convergence = convergence && std::strcmp(argv[a], "--no-convergence") != 0;
+  std::printf("threads %d, FFT %s\n", omp_get_max_threads(), Fft2::backend());
+
+  // the steel-steel case of the study on a 256 x 256 window (dx = 102 nm), 10 N
+  ParticleModelConfig c = make_pair_config(PairName::kSteelSteel);
+  const double window = 24.48e-6;
+  const int n = 256;
+  Grid g{n, n, window / n, window / n, true};
+  c.grid = g;
+  const std::vector<double> cyl = make_rough_surface(g, c.harder.roughness, "bench");
+  const std::vector<double> disk = make_rough_surface(g, c.softer.roughness, "bench");
+  std::vector<double> h(g.size());
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      h[i * n + j] = g.x(i) * g.x(i) / (2 * c.cylinder_radius) - cyl[i * n + j] - disk[i * n + j];
+  ContactOptions opt;
+  opt.load = window_load(c);
+  opt.hardness = c.softer.hardness;
+  opt.tolerance = 1e-6;
+  opt.max_iterations = 100;
+
+  std::vector<double> t_setup, t_solve, t_field, c_solve, c_field;
+  ContactResult cr;
+  for (int r = 0; r < repeats; ++r) {
+    std::unique_ptr<DeflectionOperator> op;
+    double cpu = 0.0;
+    t_setup.push_back(seconds_of([&] { op = std::make_unique<DeflectionOperator>(g, c.harder.elastic, c.softer.elastic); }));
+    t_solve.push_back(seconds_of([&] { cr = solve_contact(*op, h, opt); }, &cpu));
+    c_solve.push_back(cpu);
+  }
+  SubsurfaceStress st(g, c.softer.elastic.poisson_ratio);
+  st.set_traction(cr.pressure, c.friction);
+  std::vector<double> vm;
+  for (int r = 0; r < repeats; ++r) {
+    double cpu = 0.0;
+    t_field.push_back(seconds_of([&] { vm = calc_von_mises_field(st, 64, 95e-9); }, &cpu));
+    c_field.push_back(cpu);
+  }
+  std::printf("256x256 rough contact solve: median %.3f s wall, %.3f s CPU (CG iterations %d, "
+              "converged %d, contact %.3f, capped %.3f)\n",
+              median(t_solve), median(c_solve), cr.iterations, int(cr.converged), cr.contact_fraction, cr.capped_fraction);
+  std::printf("256x256 deflection operator set-up (once per grid): median %.3f s\n", median(t_setup));
+  std::printf("256x256x64 von Mises field: median %.3f s wall, %.3f s CPU (max %.0f MPa)\n",
+              median(t_field), median(c_field),
+              *std::max_element(vm.begin(), vm.end()) / 1e6);
+
+  // smooth Hertz cylinder on the same grid (elastic; the CG without the cap)
+  {
+    std::vector<double> hs(g.size());
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) hs[i * n + j] = g.x(i) * g.x(i) / (2 * c.cylinder_radius);
+    DeflectionOperator op(g, c.harder.elastic, c.softer.elastic);
+    ContactOptions o2 = opt;
+    o2.hardness = 0.0;
+    o2.max_iterations = 2000;
+    std::vector<double> ts;
+    ContactResult r2;
+    for (int r = 0; r < repeats; ++r) ts.push_back(seconds_of([&] { r2 = solve_contact(op, hs, o2); }));
+    std::printf("256x256 smooth cylinder solve: median %.3f s (CG iterations %d)\n", median(ts), r2.iterations);
+  }
+  if (!convergence) return 0;
+
+  // grid convergence: same window, surfaces from one 320^2 realisation, the first contact
+  std::printf("\ngrid convergence (steel-steel, 10 N, window %.2f um, first contact, 16 levels refined x4)\n", window * 1e6);
+  std::printf("   n   dx_nm  contact  maxvM_MPa  particles  R_nm  L_nm  W_nm  T_nm  solve_s  field_s\n");
+  Grid fine{320, 320, window / 320, window / 320, true};
+  const std::vector<double> cyl_f = make_rough_surface(fine, c.harder.roughness, "bench");
+  const std::vector<double> disk_f = make_rough_surface(fine, c.softer.roughness, "bench");
+  for (int m : {80, 120, 160, 240, 320}) {
+    Grid gm{m, m, window / m, window / m, true};
+    const std::vector<double> cm = resample(cyl_f, 320, m), dm = resample(disk_f, 320, m);
+    std::vector<double> hm(gm.size());
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        hm[i * m + j] = gm.x(i) * gm.x(i) / (2 * c.cylinder_radius) - cm[i * m + j] - dm[i * m + j];
+    DeflectionOperator op(gm, c.harder.elastic, c.softer.elastic);
+    ContactResult rm;
+    const double ts = seconds_of([&] { rm = solve_contact(op, hm, opt); });
+    SubsurfaceStress sm(gm, 0.3);
+    sm.set_traction(rm.pressure, c.friction);
+    const int nz = 16;
+    const double dz = 95e-9;
+    std::vector<double> vmm;
+    const double tf = seconds_of([&] { vmm = calc_von_mises_field(sm, nz, dz); });
+    const Detachment d = find_particles(refine_levels(vmm, gm.size(), nz, 4), gm, (nz - 1) * 4,
+                                        dz / 4, c.softer.yield_stress);
+    std::vector<ParticleRecord> recs;
+    for (const Particle& p : d.particles) recs.push_back({1, p});
+    const SizeStats s = calc_size_stats(recs, 1);
+    std::printf("%4d  %6.1f  %7.4f  %9.0f  %9ld  %4.0f  %4.0f  %4.0f  %4.0f  %7.3f  %7.3f\n", m,
+                gm.dx * 1e9, rm.contact_fraction, *std::max_element(vmm.begin(), vmm.end()) / 1e6,
+                s.particles, s.eq_radius * 1e9, s.length * 1e9, s.width * 1e9, s.thickness * 1e9, ts, tf);
+  }
+  return 0;
+}

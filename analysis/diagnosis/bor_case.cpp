@@ -25,7 +25,8 @@ bor::BorWearLaw law_of(Effect e) {
     case Effect::creep: return bor::BorWearLaw::creep;
     case Effect::none:
     case Effect::cross_shear:
-    case Effect::friction: break;
+    case Effect::friction:
+    case Effect::restraint: break;
   }
   return bor::BorWearLaw::archard;
 }

@@ -20,17 +20,17 @@ namespace {
 
 // The measurements with their specimen structure. Specimens of one material scatter in wear
 // factor (multiplicatively), so the residuals of one specimen are correlated; when specimens
-// are given, every model is fitted with a specimen random effect: y_s = f_s (1 + u_s) + e,
-// u_s ~ N(0, tau^2), whose covariance sigma^2 I + tau^2 g g^T (g = weighted baseline curve of
-// the specimen) is whitened exactly (rank-one update). Without it, AICc treats the 4-8
-// correlated points of a specimen as independent and mistakes specimen scatter between loads
-// for a pressure effect.
+// are given, every model is fitted with a specimen random effect: y_s = f_s + u_s g_s + e,
+// u_s ~ N(0, tau^2), g_s = weighted derivative of the specimen's baseline curve with respect
+// to ln k. Its covariance sigma^2 I + tau^2 g g^T is whitened exactly (rank-one update).
+// Without it, AICc treats the 4-8 correlated points of a specimen as independent and mistakes
+// specimen scatter between loads for a pressure effect.
 struct Problem {
   const DiagnosisCase& c;
   Eigen::VectorXd y;                       // measured values
   Eigen::VectorXd weights;                 // per measurement
   std::vector<std::vector<int>> clusters;  // specimens (rows), or one row each
-  Eigen::VectorXd g;                       // weighted baseline prediction per row
+  Eigen::VectorXd g;                       // random-effect direction per row (weighted)
   bool random_effect = false;              // specimens given: fit tau too
 };
 
@@ -161,12 +161,12 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
                      " parameters of candidate " + std::string(effect_name(e)) + ".");
   }
   // full data: multi-start at rho = 0, then profile the specimen variance ratio
+  FitResult best = fit_clusters(pb, pb.y, e, m.specs, initial_of(m.specs, calibrated),
+                                pb.clusters, 0.0, opt.multi_start);
   double g2_mean = 0.0;
   for (const auto& cl : pb.clusters) {
     for (int i : cl) g2_mean += pb.g[i] * pb.g[i] / static_cast<double>(pb.clusters.size());
   }
-  FitResult best = fit_clusters(pb, pb.y, e, m.specs, initial_of(m.specs, calibrated),
-                                pb.clusters, 0.0, opt.multi_start);
   double best_rho = 0.0;
   m.aicc = aicc(best.rss, 0.0, n, k);
   if (pb.random_effect) {
@@ -317,7 +317,15 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   }
 
   res.baseline = practitioner_baseline(pb);
-  pb.g = res.baseline.predictions.cwiseProduct(pb.weights);
+  // random-effect direction: d prediction / d ln(specimen parameter), weighted (for depth
+  // this is not the depth itself: depth grows less than proportionally with volume)
+  {
+    Eigen::VectorXd b2 = res.baseline.params;
+    b2[c.specimen_param] *= 1.01;
+    const Eigen::VectorXd none;
+    const Eigen::VectorXd up = c.predict(Effect::none, b2, none, all_rows(rows.size()));
+    pb.g = ((up - res.baseline.predictions) / std::log(1.01)).cwiseProduct(pb.weights);
+  }
   std::vector<Effect> effects = {Effect::none};
   effects.insert(effects.end(), c.candidates.begin(), c.candidates.end());
   std::vector<double> rhos;

@@ -31,7 +31,7 @@ namespace kneesim::diagnosis {
 struct DiagnosisOptions {
   int bootstrap = 200;              // bootstrap resamples of the chosen fit [-]
   std::uint64_t seed = 1;           // bootstrap seed [-]
-  double ic_threshold = 10.0;       // required AICc drop against "none" [-]
+  double ic_threshold = 12.0;       // required AICc drop against "none" [-]
   double heldout_threshold = 0.05;  // required relative held-out RMSE drop against "none" [-]
   bool multi_start = true;          // multi-start the full-data fits
 };

@@ -58,6 +58,8 @@ struct DiagnosisCase {
   MeasuredData measured;
   std::string baseline_model;          // one line: the practitioner's model and calibration
   std::vector<ParamSpec> baseline_params;  // refitted in every candidate (e.g. k)
+  int specimen_param = 0;              // baseline parameter that scatters multiplicatively
+                                       // between specimens (the random effect's direction)
   std::vector<Effect> candidates;      // effects applicable to these data (without none)
   std::string split_rule;              // e.g. "leave-one-specimen-out"
   std::vector<Fold> folds;             // the held-out split rule, applied

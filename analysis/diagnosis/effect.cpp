@@ -55,6 +55,18 @@ const std::vector<EffectInfo>& library() {
        DataNeed::kinematics,
        {{"friction_coefficient", "friction coefficient mu [-]", 0.0, 0.5, 0.07, false,
          {0.02, 0.15}}}},
+      {Effect::restraint, "restraint",
+       "Force-controlled models miss the kinematics of the rig or the patient because the "
+       "restraint they assume is not the one acting: the simulator's springs, or a patient's "
+       "ligaments and capsule, are stiffer or softer and engage after a different laxity gap "
+       "(Dreyer 2023); AP and IE follow the balance of the applied loads, the conformity of "
+       "the insert and this restraint.",
+       "restraint springs k_ant, k_post, k_inside, k_IE scaled by s; AP laxity gap g",
+       DataNeed::kinematics,
+       {{"restraint_stiffness_scale", "scale s of every restraint stiffness [-]", 0.05, 20.0,
+         1.0, true, {0.3, 3.0}},
+        {"restraint_gap_mm", "AP laxity gap g of the restraint springs [mm]", 0.0, 10.0, 3.0,
+         false, {}}}},
   };
   return lib;
 }
@@ -72,7 +84,7 @@ const std::vector<Effect>& all_effects() {
   static const std::vector<Effect> all = {Effect::none,        Effect::running_in,
                                           Effect::pressure_dependent_wear,
                                           Effect::cross_shear, Effect::creep,
-                                          Effect::friction};
+                                          Effect::friction, Effect::restraint};
   return all;
 }
 

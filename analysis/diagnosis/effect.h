@@ -20,6 +20,7 @@ enum class Effect {
   cross_shear,              // k rising with the cross-shear ratio of the sliding path
   creep,                    // penetration without volume loss, decaying in time
   friction,                 // a different friction coefficient, visible in kinematics
+  restraint,                // a different soft-tissue restraint (stiffness, gap), in kinematics
 };
 
 // what an effect needs to be identifiable

@@ -96,7 +96,7 @@ TEST_CASE("the split rule follows the specimens") {
   const auto s = test::make_synthetic_bor(Effect::none, 1);
   const auto c = make_bor_case(s.data, BorCaseOptions{});
   CHECK(c.split_rule == "leave-one-specimen-out");
-  CHECK(c.folds.size() == 10);  // 5 specimens x 2 loads
+  CHECK(c.folds.size() == 12);  // 6 specimens x 2 loads
   const auto no_spec = make_bor_case(read_bor_measured(write_temp("good.csv", kGood)), {});
   CHECK(no_spec.split_rule == "leave-one-load-out");
   CHECK(no_spec.folds.size() == 2);

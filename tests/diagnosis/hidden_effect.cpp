@@ -34,7 +34,7 @@ SyntheticData make_synthetic_bor(diagnosis::Effect effect, std::uint64_t seed,
     }
     case Effect::pressure_dependent_wear:
       law = bor::BorWearLaw::pressure_dependent_wear;
-      p.pressure_exponent = uniform(0.6, 1.5);
+      p.pressure_exponent = uniform(0.7, 1.5);
       s.params["pressure_exponent"] = p.pressure_exponent;
       break;
     case Effect::creep:
@@ -46,7 +46,8 @@ SyntheticData make_synthetic_bor(diagnosis::Effect effect, std::uint64_t seed,
       break;
     case Effect::none:
     case Effect::cross_shear:
-    case Effect::friction: break;
+    case Effect::friction:
+    case Effect::restraint: break;
   }
 
   s.data.source = "synthetic-" + std::string(diagnosis::effect_name(effect)) + "-" +

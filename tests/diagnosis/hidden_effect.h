@@ -24,7 +24,7 @@
 namespace kneesim::test {
 
 struct SyntheticOptions {
-  int specimens_per_load = 5;         // [-]
+  int specimens_per_load = 6;         // [-]
   bool with_depth = true;             // measure penetration depth too
   double specimen_cv = 0.05;          // coefficient of variation of k between specimens [-]
   double volume_noise_mm3 = 0.02;     // absolute volume noise sd [mm^3]

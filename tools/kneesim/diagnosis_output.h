@@ -17,7 +17,7 @@ struct DiagnoseCommonOptions {
   std::string out = "out/diagnose";  // output folder
   int bootstrap = 200;               // bootstrap resamples [-]
   std::uint64_t seed = 1;            // bootstrap seed [-]
-  double ic_threshold = 10.0;        // required AICc drop against none [-]
+  double ic_threshold = 12.0;        // required AICc drop against none [-]
   double heldout_threshold = 0.05;   // required relative held-out RMSE drop [-]
 };
 

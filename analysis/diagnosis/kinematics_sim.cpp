@@ -1,0 +1,109 @@
+#include "analysis/diagnosis/kinematics_sim.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "engine/simulate.h"
+
+namespace kneesim::diagnosis {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
+constexpr size_t kCacheLimit = 512;
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+double KinematicsTrace::at(const std::string& quantity, double pct) const {
+  const std::vector<double>& y = (quantity == "ie_deg") ? ie_deg : ap_mm;
+  const size_t n = gait_pct.size();
+  if (n == 0) return NAN;
+  if (pct <= gait_pct.front()) return y.front();
+  if (pct >= gait_pct.back()) return y.back();
+  size_t i = 1;
+  while (i < n - 1 && gait_pct[i] < pct) ++i;
+  const double t = (pct - gait_pct[i - 1]) / (gait_pct[i] - gait_pct[i - 1]);
+  return y[i - 1] + t * (y[i] - y[i - 1]);
+}
+
+KinematicsSimulator::KinematicsSimulator(const models::Config& config)
+    : config_(config), built_(models::build_model(config)) {
+  restraint0_ = built_.model.restraint;
+  friction0_ = built_.model.contact.friction;
+  build_seconds_ = built_.build_seconds;
+}
+
+std::shared_ptr<const KinematicsTrace> KinematicsSimulator::run(Effect effect,
+                                                                const Eigen::VectorXd& params) {
+  std::vector<double> key = {static_cast<double>(effect)};
+  if (effect == Effect::friction || effect == Effect::restraint) {
+    key.insert(key.end(), params.data(), params.data() + params.size());
+  }
+  if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
+  const auto t0 = std::chrono::steady_clock::now();
+
+  engine::Model& model = built_.model;
+  model.contact.friction = friction0_;
+  model.restraint = restraint0_;
+  if (effect == Effect::friction) model.contact.friction = params[0];
+  if (effect == Effect::restraint) {
+    for (engine::RestraintSpring& s : model.restraint) {
+      s.k_inside *= params[0];
+      s.k_positive *= params[0];
+      s.k_negative *= params[0];
+      if (s.kind == engine::RestraintKind::kTranslational) s.gap = params[1] * 1e-3;
+    }
+  }
+  engine::State state = engine::make_initial_state(model);
+  engine::Data data = engine::make_data(model);
+  engine::RunOptions ro;
+  ro.cycles = config_.cycles;
+  const engine::RunResult r = engine::simulate(model, state, data, ro);
+
+  auto trace = std::make_shared<KinematicsTrace>();
+  trace->ok = r.status == engine::StepStatus::kOk && !r.frames.empty();
+  for (const engine::Frame& f : r.frames) {
+    trace->gait_pct.push_back(f.gait_pct);
+    trace->ap_mm.push_back(f.q[1][0] * 1e3);
+    trace->ie_deg.push_back(f.q[1][4] * kRadToDeg);
+  }
+  ++simulations_;
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (cache_.size() >= kCacheLimit) cache_.clear();
+  cache_[key] = trace;
+  return trace;
+}
+
+std::string KinematicsSimulator::equivalent_sets(Effect effect, const Eigen::VectorXd& p) const {
+  switch (effect) {
+    case Effect::friction: return "--set contact.friction=" + fmt("%.4g", p[0]);
+    case Effect::restraint: {
+      const models::Config& c = config_;
+      std::string s = "--set rig.restraint.gap_mm=" + fmt("%.4g", p[1]);
+      auto scaled = [&](const char* key, double v) {
+        if (v > 0.0) s += std::string(" --set rig.restraint.") + key + "=" + fmt("%.4g", v * p[0]);
+      };
+      scaled("k_anterior_N_per_mm", c.k_anterior_N_per_mm);
+      scaled("k_posterior_N_per_mm", c.k_posterior_N_per_mm);
+      scaled("k_inside_N_per_mm", c.k_inside_N_per_mm);
+      scaled("k_ie_inside_Nm_per_deg", c.k_ie_inside_Nm_per_deg);
+      scaled("k_ie_Nm_per_deg", c.k_ie_Nm_per_deg);
+      return s;
+    }
+    case Effect::none:
+    case Effect::running_in:
+    case Effect::pressure_dependent_wear:
+    case Effect::cross_shear:
+    case Effect::creep: break;
+  }
+  return "";
+}
+
+}  // namespace kneesim::diagnosis

@@ -1,0 +1,64 @@
+// The forward model of the kinematics diagnosis: the force-controlled rig simulation of a
+// config, with the two kinematic effects of the library applied to the built Model:
+//   friction   contact.friction = mu                       (`kneesim run --set contact.friction=mu`)
+//   restraint  every restraint stiffness scaled by s, the AP spring gap set to g
+//              (`kneesim run --set rig.restraint.k_anterior_N_per_mm=... gap_mm=g ...`)
+// Both are exactly what build_model makes of the equivalent config keys (the restraint is
+// linear in its stiffnesses), so the Model is built once (the femoral distance field of a mesh
+// implant takes seconds) and only these fields change between evaluations; equivalent_sets()
+// prints the --set list that reproduces an evaluation with `kneesim run`.
+//
+// Every evaluation is a full simulation (config.cycles gait cycles), so results are cached by
+// (effect, parameters): the diagnosis asks for the same parameters for several row subsets
+// (folds, offsets). The time step is kept: the restraint is 3-4 orders softer than the contact,
+// and friction is bounded (0-0.3) so the regularized Coulomb slope stays stable.
+#pragma once
+
+#include <Eigen/Core>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analysis/diagnosis/effect.h"
+#include "models/build_model.h"
+
+namespace kneesim::diagnosis {
+
+// one simulated cycle, one sample per 1 % (101 samples, 0..100 %)
+struct KinematicsTrace {
+  std::vector<double> gait_pct;  // [%]
+  std::vector<double> ap_mm;     // tibial AP, + anterior [mm]
+  std::vector<double> ie_deg;    // tibial IE, + internal [deg]
+  bool ok = true;                // false when the simulation stopped on numerical trouble
+  // value of "ap_mm" or "ie_deg" at gait % (linear, periodic) [mm or deg]
+  double at(const std::string& quantity, double pct) const;
+};
+
+class KinematicsSimulator {
+ public:
+  explicit KinematicsSimulator(const models::Config& config);
+
+  // the trace of `effect` with its parameters [I/O units] (none: the config as it is)
+  std::shared_ptr<const KinematicsTrace> run(Effect effect, const Eigen::VectorXd& params);
+
+  // `kneesim run` overrides that reproduce run(effect, params)
+  std::string equivalent_sets(Effect effect, const Eigen::VectorXd& params) const;
+
+  const models::Config& config() const { return config_; }
+  int simulations() const { return simulations_; }   // evaluations not served by the cache
+  double seconds() const { return seconds_; }          // wall time of those evaluations [s]
+  double build_seconds() const { return build_seconds_; }  // model build [s]
+
+ private:
+  models::Config config_;
+  models::BuiltModel built_;
+  std::vector<engine::RestraintSpring> restraint0_;  // as built
+  double friction0_ = 0.07;                          // as built [-]
+  std::map<std::vector<double>, std::shared_ptr<const KinematicsTrace>> cache_;
+  int simulations_ = 0;
+  double seconds_ = 0.0;
+  double build_seconds_ = 0.0;
+};
+
+}  // namespace kneesim::diagnosis

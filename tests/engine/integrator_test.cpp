@@ -13,8 +13,11 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 #include <vector>
 
+#include "engine/simulate.h"
 #include "engine/step.h"
 #include "engine_fixtures.h"
 
@@ -208,4 +211,21 @@ TEST_CASE("carriage damping: the free DOF decays as the damped recurrence") {
           << " x0, envelope " << env_start / kX0 << " .. " << env_end / kX0 << " x0");
   CHECK(last_peak <= 1.01 * env_start);
   CHECK(last_peak >= env_end);
+}
+
+TEST_CASE("a NaN force stops the run cleanly with kNotFinite") {
+  // a restraint stiffness of NaN makes the first step's state NaN: step() reports it without
+  // throwing, and simulate() stops at once, keeping the status and the failure time
+  engine::Model m = make_spring_mass(1e-3);
+  m.restraint[0].k_positive = std::numeric_limits<double>::quiet_NaN();
+  engine::State s = engine::make_initial_state(m);
+  engine::Data d = engine::make_data(m);
+  CHECK(engine::step(m, s, d) == engine::StepStatus::kNotFinite);
+  engine::State s2 = engine::make_initial_state(m);
+  engine::Data d2 = engine::make_data(m);
+  const engine::RunResult r = engine::simulate(m, s2, d2, engine::RunOptions{});
+  CHECK(r.status == engine::StepStatus::kNotFinite);
+  CHECK(r.failed_at == doctest::Approx(1e-3));
+  CHECK(r.steps == 1);
+  CHECK(std::string(engine::to_string(r.status)).find("NaN") != std::string::npos);
 }

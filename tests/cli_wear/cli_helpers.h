@@ -58,6 +58,9 @@ inline void spit(const fs::path& p, const std::string& bytes) {
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
+// byte equality, without doctest printing two whole files when they differ
+inline bool same_bytes(const std::string& a, const std::string& b) { return a == b; }
+
 inline int count_lines(const std::string& text) {
   int n = 0;
   for (char c : text) n += c == '\n';
@@ -117,15 +120,16 @@ inline Result run_kneesim(const std::vector<std::string>& args, const fs::path& 
   return wait_kneesim(pid, dir, tag, t0);
 }
 
-// starts kneesim and SIGKILLs it as soon as `trigger` exists (polled every millisecond);
+// starts kneesim and SIGKILLs it as soon as `when()` is true (polled every millisecond);
 // returns how it ended (signal == SIGKILL when the kill came first)
-inline Result kill_when_exists(const std::vector<std::string>& args, const fs::path& dir,
-                               const fs::path& trigger, const std::string& tag) {
+template <typename Predicate>
+inline Result kill_when(const std::vector<std::string>& args, const fs::path& dir,
+                        Predicate when, const std::string& tag) {
   const auto t0 = std::chrono::steady_clock::now();
   const pid_t pid = start_kneesim(args, dir, tag);
   if (pid < 0) return {};
   for (;;) {
-    if (fs::exists(trigger)) {
+    if (when()) {
       ::kill(pid, SIGKILL);
       break;
     }
@@ -140,6 +144,12 @@ inline Result kill_when_exists(const std::vector<std::string>& args, const fs::p
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   return wait_kneesim(pid, dir, tag, t0);
+}
+
+// SIGKILLs kneesim as soon as `trigger` exists
+inline Result kill_when_exists(const std::vector<std::string>& args, const fs::path& dir,
+                               const fs::path& trigger, const std::string& tag) {
+  return kill_when(args, dir, [&trigger] { return fs::exists(trigger); }, tag);
 }
 
 inline std::vector<std::string> split(const std::string& line, char sep) {

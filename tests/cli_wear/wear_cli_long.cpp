@@ -7,10 +7,12 @@
 //    UHMWPE < PEEK < CFR-PEEK (the materials study: 13.4 < 23.6 < 36.1 MPa); volumetric wear
 //    ranks CFR-PEEK < UHMWPE < PEEK with the library's wear factors (k = 3.44e-11, 2.643e-10,
 //    6.34e-10 mm^3/(N mm); the materials study: 15.6 < 124.0 < 300.9 mm^3);
-//  - `kneesim wear` killed before its first checkpoint: --resume starts afresh and writes the
-//    same wear.csv as an uninterrupted run.
+//  - `kneesim wear` killed before its first checkpoint, or after its last one (while the
+//    plots are drawn): --resume writes the same wear.csv, final_depth.csv and kinematics.csv
+//    as an uninterrupted run.
 #include <doctest/doctest.h>
 
+#include <cstring>
 #include <map>
 
 #include "tests/cli_wear/cli_helpers.h"
@@ -91,5 +93,45 @@ TEST_CASE("kneesim wear killed before its first checkpoint: --resume starts afre
   const Result r = run_kneesim(args(d3, true), tmp.path, "resume3");
   INFO("stderr: " << r.err);
   REQUIRE(r.exit_code == 0);
-  CHECK(slurp(d3 / "wear.csv") == slurp(d1 / "wear.csv"));
+  CHECK(same_bytes(slurp(d3 / "wear.csv"), slurp(d1 / "wear.csv")));
+}
+
+TEST_CASE("kneesim wear killed after its last checkpoint: --resume gives the same outputs") {
+  // reference: issue 3 ("a run killed at any moment resumes ... identical"). The last
+  // checkpoint (cycles done = the run's total) lives until the plots are drawn and
+  // summary.json is written; a kill in that window leaves nothing to simulate on resume.
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  const fs::path d1 = tmp.path / "D1", d4 = tmp.path / "D4";
+  auto args = [](const fs::path& out, bool resume) {
+    std::vector<std::string> a = {"wear",  "--cycles", "500000", "--update-every", "250000",
+                                  "--set", "implant.edge_length_mm=2", "--quiet",
+                                  "--out", out.string()};
+    if (resume) a.push_back("--resume");
+    return a;
+  };
+  const Result r1 = run_kneesim(args(d1, false), tmp.path, "d1");
+  REQUIRE(r1.exit_code == 0);
+  // cycles done is the int64 after the 16-byte magic and the 8-byte identity
+  const fs::path ckpt = d4 / "wear.checkpoint";
+  auto final_checkpoint = [&ckpt] {
+    std::ifstream in(ckpt, std::ios::binary);
+    char b[32];
+    if (!in.read(b, sizeof b)) return false;
+    int64_t cycles = 0;
+    std::memcpy(&cycles, b + 24, sizeof cycles);
+    return cycles == 500000;
+  };
+  const Result k = kill_when(args(d4, false), tmp.path, final_checkpoint, "d4");
+  REQUIRE_MESSAGE(k.signal == SIGKILL, "the run finished before it could be killed");
+  CHECK_FALSE(fs::exists(d4 / "summary.json"));
+  const Result r = run_kneesim(args(d4, true), tmp.path, "resume4");
+  INFO("stderr: " << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(same_bytes(slurp(d4 / "wear.csv"), slurp(d1 / "wear.csv")));
+  CHECK(same_bytes(slurp(d4 / "final_depth.csv"), slurp(d1 / "final_depth.csv")));
+  const std::string kin1 = slurp(d1 / "kinematics.csv"), kin4 = slurp(d4 / "kinematics.csv");
+  INFO("kinematics.csv rows: uninterrupted " << count_lines(kin1) << ", resumed "
+                                             << count_lines(kin4));
+  CHECK(same_bytes(kin4, kin1));
 }

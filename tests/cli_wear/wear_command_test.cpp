@@ -125,7 +125,7 @@ TEST_CASE("kneesim wear: outputs; killed and resumed gives a byte-identical wear
       const Result r = run_kneesim(wear_args(d2, extra, v.every), tmp.path, "bad");
       check_refused(r, v.fragment, d2);
       CHECK(r.err.find("wear.checkpoint") != std::string::npos);
-      CHECK(slurp(d2 / "wear.checkpoint") == v.bytes);  // not deleted, not overwritten
+      CHECK(same_bytes(slurp(d2 / "wear.checkpoint"), v.bytes));  // not deleted, not overwritten
     }
     spit(d2 / "wear.checkpoint", checkpoint);  // the intact one back
   }
@@ -134,8 +134,8 @@ TEST_CASE("kneesim wear: outputs; killed and resumed gives a byte-identical wear
     const Result r = run_kneesim(wear_args(d2, {"--resume"}), tmp.path, "resume");
     INFO("stderr: " << r.err);
     REQUIRE(r.exit_code == 0);
-    CHECK(slurp(d2 / "wear.csv") == csv1);
-    CHECK(slurp(d2 / "final_depth.csv") == slurp(d1 / "final_depth.csv"));
+    CHECK(same_bytes(slurp(d2 / "wear.csv"), csv1));
+    CHECK(same_bytes(slurp(d2 / "final_depth.csv"), slurp(d1 / "final_depth.csv")));
     const auto s = nlohmann::json::parse(slurp(d2 / "summary.json"));
     CHECK(s.contains("resumed_after_update"));
     CHECK_FALSE(fs::exists(d2 / "wear.checkpoint"));

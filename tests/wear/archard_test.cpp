@@ -117,6 +117,52 @@ TEST_CASE("flat on flat, uniform pressure: volume k F S (Sarkar-corrected), dept
   }
 }
 
+TEST_CASE("pressure-dependent and cross-shear laws: closed forms on the flat surface") {
+  // references (physics.md section 6 extensions, wear/wear_accumulator.h):
+  //  - Mazzucco & Spector 2003 form k = k_ref (p / p_ref)^-alpha: at p = p_ref / 2 and
+  //    alpha = 0.5 the depth is sqrt(2) times the Archard depth;
+  //  - cross-shear CS = smallest / total principal frictional work (Kang 2008): equal work along
+  //    x then along z gives CS = 1/2, so k = k_ref (1 + beta / 2); sliding along one fixed
+  //    oblique direction (x = z) is unidirectional, CS = 0 and k = k_ref.
+  // Tolerance 1e-12 relative: closed forms evaluated in floating point.
+  const FlatSurface f = make_flat_surface(3, 0.0);
+  engine::Model model;
+  model.dt = 1e-3;
+  model.insert = f.surface;
+  const double p = 5e6, v = 0.02, k = 1e-16;
+  const int steps = 200;
+  const double archard = k * p * steps * v * model.dt * wear::sarkar_factor(0.07);
+
+  wear::WearLawParams pd;
+  pd.law = wear::WearLaw::kPressureDependent;
+  pd.wear_factor = k;
+  pd.p_ref = 2.0 * p;
+  pd.alpha = 0.5;
+  wear::WearAccumulator a(f.surface.size(), pd);
+  const engine::Data data_x = test::make_uniform_contact(f.surface, p, v);
+  for (int i = 0; i < steps; ++i) a.observe(model, engine::State{}, data_x);
+  for (double d : a.depth_per_cycle()) CHECK(rel(d, std::sqrt(2.0) * archard) < 1e-12);
+
+  wear::WearLawParams cs;
+  cs.law = wear::WearLaw::kCrossShear;
+  cs.wear_factor = k;
+  cs.beta = 3.0;
+  wear::WearAccumulator b(f.surface.size(), cs);
+  engine::Data data_z = data_x;
+  for (auto& u : data_z.slip_velocity_T) u = Eigen::Vector3d(0.0, 0.0, v);
+  for (int i = 0; i < steps / 2; ++i) b.observe(model, engine::State{}, data_x);
+  for (int i = 0; i < steps / 2; ++i) b.observe(model, engine::State{}, data_z);
+  for (double r : b.cross_shear_ratio()) CHECK(r == doctest::Approx(0.5).epsilon(1e-12));
+  for (double d : b.depth_per_cycle()) CHECK(rel(d, (1.0 + 0.5 * cs.beta) * archard) < 1e-12);
+
+  wear::WearAccumulator c(f.surface.size(), cs);
+  engine::Data data_xz = data_x;
+  for (auto& u : data_xz.slip_velocity_T) u = Eigen::Vector3d(v, 0.0, v) / std::sqrt(2.0);
+  for (int i = 0; i < steps; ++i) c.observe(model, engine::State{}, data_xz);
+  for (double r : c.cross_shear_ratio()) CHECK(std::abs(r) < 1e-12);
+  for (double d : c.depth_per_cycle()) CHECK(rel(d, archard) < 1e-12);
+}
+
 TEST_CASE("only elements in contact with p > 0 and slip wear") {
   // reference: Archard's law has no wear without load or without sliding
   const FlatSurface f = make_flat_surface(4, 0.0);

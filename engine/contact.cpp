@@ -91,6 +91,9 @@ void calc_contact(const Model& model, const State& state, Data& data) {
     data.slip_speed[e] = v_slip.norm();
     data.slip_velocity_T[e] = R_TW * v_slip;
     data.element_force_W[e] = s.area[e] * traction;
+    data.friction_viscosity[e] = s.area[e] * cm.friction * p /
+                                 std::sqrt(v_slip.squaredNorm() +
+                                           cm.slip_regularization * cm.slip_regularization);
   }
   data.in_contact.clear();
   for (int i = 0; i < n; ++i) {
@@ -104,17 +107,24 @@ void calc_contact(const Model& model, const State& state, Data& data) {
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment_O = Eigen::Vector3d::Zero();
   std::array<double, 2> weight{};
   std::array<std::array<double, kNumDof>, 2> stiffness{};
+  for (auto& f : data.friction_damping) f.fill(0.0);
   for (int e : data.in_contact) {
     const Eigen::Vector3d c_W = data.X_WT * s.centroid_T[e];
     const Eigen::Vector3d n_W = data.X_WT.linear() * s.normal_T[e];
     const double ke = s.area[e] * ef_stiffness(cm.law, cm.foundation_modulus,
                                                data.penetration[e], s.thickness[e]);
+    const double ce = data.friction_viscosity[e];
     for (int c = 0; c < 2; ++c) {
-      const Eigen::Vector3d rxn = (c_W - state.carriages[c].pivot_W).cross(n_W);
+      const Eigen::Vector3d r = c_W - state.carriages[c].pivot_W;
+      const Eigen::Vector3d rxn = r.cross(n_W);
       for (int i = 0; i < 3; ++i) {
+        // normal stiffness along the DOF's direction; friction acts on its tangential part
         stiffness[c][i] += ke * n_W[i] * n_W[i];
+        data.friction_damping[c][i] += ce * (1.0 - n_W[i] * n_W[i]);
         const double j = data.axes[c][i].dot(rxn);
         stiffness[c][3 + i] += ke * j * j;
+        const double jj = data.axes[c][i].cross(r).squaredNorm();
+        data.friction_damping[c][3 + i] += ce * (jj - j * j);
       }
     }
     const Eigen::Vector3d& f = data.element_force_W[e];

@@ -47,6 +47,7 @@ struct Data {
   std::vector<double> slip_speed;          // tangential slip speed femur vs insert [m/s]
   std::vector<Eigen::Vector3d> slip_velocity_T;  // slip velocity in T [m/s]
   std::vector<Eigen::Vector3d> element_force_W;  // force on the femur [N]
+  std::vector<double> friction_viscosity;  // d|friction force|/d|slip| at the slip [N s/m]
 
   // current kinematics
   std::array<std::array<double, kNumDof>, 2> q{};    // DOF values [m or rad]
@@ -59,6 +60,9 @@ struct Data {
   double gait_pct = 0.0;
   std::array<std::array<double, kNumDof>, 2> applied{};      // waveform loads [N or N m]
   std::array<std::array<double, kNumDof>, 2> generalized{};  // total generalized force
+  // viscous slope of the regularized friction per DOF, integrated implicitly by the step
+  // (engine/step.cpp) [N s/m or N m s/rad]
+  std::array<std::array<double, kNumDof>, 2> friction_damping{};
   Eigen::Vector3d restraint_force = Eigen::Vector3d::Zero();  // AP force, IE torque summary:
                                                               // x = AP [N], y = IE [N m]
 

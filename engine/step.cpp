@@ -94,9 +94,16 @@ void integrate_carriage(const Model& model, int c, State& state, const Data& dat
         project_rotation |= is_rotation(i);
         break;
       case DofMode::kFree:
-      case DofMode::kForce:
-        rate += dt * (data.generalized[c][i] - dof.damping * rate) / dof.mass;
+      case DofMode::kForce: {
+        // the regularized friction is a stiff damper near stick (slope mu p A / eps): its
+        // linear part is taken at the new velocity, which keeps the update stable for any
+        // eps; the rest of the force, as in any central-difference step, at the old one
+        const double c_f = data.friction_damping[c][i];
+        rate = (rate + dt * (data.generalized[c][i] + c_f * rate - dof.damping * rate) /
+                           dof.mass) /
+               (1.0 + dt * c_f / dof.mass);
         break;
+      }
     }
   }
   for (int i = 0; i < 3; ++i) {
@@ -227,6 +234,7 @@ Data make_data(const Model& model) {
   data.slip_speed.assign(n, 0.0);
   data.slip_velocity_T.assign(n, Eigen::Vector3d::Zero());
   data.element_force_W.assign(n, Eigen::Vector3d::Zero());
+  data.friction_viscosity.assign(n, 0.0);
   for (int e = 0; e < n; ++e) {
     data.insert_radius = std::max(data.insert_radius, model.insert.centroid_T[e].norm());
   }

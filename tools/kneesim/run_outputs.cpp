@@ -121,7 +121,8 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
 nlohmann::json describe_figures(const CycleFigures& f) {
   nlohmann::json j;
   j["ap_rom_mm"] = f.ap_rom_mm;
-  j["ie_rom_mm"] = f.ie_rom_mm;
+  j["ie_rom_deg"] = f.ie_rom_mm;
+  j["ie_rom_mm"] = f.ie_rom_mm;  // the key; the value is in degrees (see README)
   j["peak_pressure_MPa"] = f.peak_pressure_MPa;
   j["mean_peak_pressure_MPa"] = f.mean_peak_pressure_MPa;
   j["peak_contact_force_N"] = f.peak_contact_force_N;

@@ -98,7 +98,9 @@ void check_one_sentence(const std::string& msg, const fs::path& file) {
 }  // namespace
 
 TEST_CASE("checkpoint round trip is bit-identical") {
-  // reference: the invariant resume relies on (every double restored bit for bit)
+  // reference: the invariant resume relies on (every double restored bit for bit); the
+  // records are written as kFields doubles from &cycles, so the record must be exactly that
+  CHECK(sizeof(wear::UpdateRecord) == wear::UpdateRecord::kFields * sizeof(double));
   TempDir dir;
   const fs::path p = dir.path / "wear.checkpoint";
   const wear::Checkpoint c = make_checkpoint(0x1234abcdULL);

@@ -1,9 +1,8 @@
 // `kneesim compare`: the same wear simulation for several insert materials, run concurrently
 // (one material per core), with a comparison table, a markdown report and plots.
 #include <cstdio>
-#include <exception>
 #include <sstream>
-#include <thread>
+#include <mutex>
 
 #include "engine/errors.h"
 #include "models/config.h"
@@ -52,31 +51,14 @@ void run(const CompareArgs& a) {
   }
   fs::create_directories(a.out);
   for (const char* f : {"comparison.csv", "comparison.md", "comparison.json"}) fs::remove(fs::path(a.out) / f);
-  std::vector<nlohmann::json> results(jobs.size());
-  std::vector<std::exception_ptr> errors(jobs.size());
-  const int workers =
-      a.jobs > 0 ? a.jobs : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  std::atomic<size_t> next{0};
-  for (int w = 0; w < workers; ++w) {
-    pool.emplace_back([&] {
-      for (size_t i = next++; i < jobs.size(); i = next++) {
-        try {
-          results[i] = run_wear_job(jobs[i]);
-          if (!a.quiet) {
-            std::fprintf(stderr, "%s done: %.1f mm^3 in %.1f s\n", a.materials[i].c_str(),
-                         results[i]["volume_mm3"].get<double>(),
-                         results[i]["seconds"].get<double>());
-          }
-        } catch (...) {
-          errors[i] = std::current_exception();
-        }
-      }
-    });
-  }
-  for (auto& t : pool) t.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  std::mutex print;
+  const std::vector<nlohmann::json> results =
+      run_wear_jobs(jobs, a.jobs, [&](size_t i, const nlohmann::json& r) {
+        if (a.quiet) return;
+        std::lock_guard<std::mutex> lock(print);
+        std::fprintf(stderr, "%s done: %.1f mm^3 in %.1f s\n", a.materials[i].c_str(),
+                     r["volume_mm3"].get<double>(), r["seconds"].get<double>());
+      });
 
   io::Table t;
   t.label_name = "material";

@@ -1,10 +1,7 @@
 // `kneesim wear`: Sarkar-corrected Archard wear of the insert over millions of cycles with a
 // geometry update every N cycles, checkpointed after every update.
-#include <atomic>
 #include <cstdio>
-#include <exception>
 #include <sstream>
-#include <thread>
 
 #include "engine/errors.h"
 #include "models/config.h"
@@ -47,24 +44,7 @@ void run_convergence(const WearArgs& a, const std::vector<models::Override>& ove
     check_wear_job(job);
     jobs.push_back(std::move(job));
   }
-  std::vector<nlohmann::json> results(jobs.size());
-  std::vector<std::exception_ptr> errors(jobs.size());
-  std::atomic<size_t> next{0};
-  std::vector<std::thread> pool;
-  for (unsigned w = 0; w < std::max(1u, std::thread::hardware_concurrency()); ++w) {
-    pool.emplace_back([&] {
-      for (size_t i = next++; i < jobs.size(); i = next++) {
-        try {
-          results[i] = run_wear_job(jobs[i]);
-        } catch (...) {
-          errors[i] = std::current_exception();
-        }
-      }
-    });
-  }
-  for (auto& t : pool) t.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  const std::vector<nlohmann::json> results = run_wear_jobs(jobs);
   // reference: the shortest interval
   size_t ref = 0;
   for (size_t i = 1; i < jobs.size(); ++i)

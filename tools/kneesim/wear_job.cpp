@@ -1,6 +1,9 @@
 #include "tools/kneesim/wear_job.h"
 
+#include <atomic>
 #include <chrono>
+#include <exception>
+#include <thread>
 #include <cstdio>
 #include <numbers>
 
@@ -206,6 +209,32 @@ nlohmann::json run_wear_job(const WearJob& j) {
   io::write_json(j.out / "summary.json", summary);
   fs::remove(o.checkpoint);  // complete: nothing to resume
   return summary;
+}
+
+std::vector<nlohmann::json> run_wear_jobs(
+    const std::vector<WearJob>& jobs, int workers,
+    const std::function<void(size_t, const nlohmann::json&)>& done) {
+  std::vector<nlohmann::json> results(jobs.size());
+  std::vector<std::exception_ptr> errors(jobs.size());
+  if (workers <= 0) workers = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::atomic<size_t> next{0};
+  std::vector<std::thread> pool;
+  for (int w = 0; w < workers; ++w) {
+    pool.emplace_back([&] {
+      for (size_t i = next++; i < jobs.size(); i = next++) {
+        try {
+          results[i] = run_wear_job(jobs[i]);
+          if (done) done(i, results[i]);
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      }
+    });
+  }
+  for (auto& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return results;
 }
 
 }  // namespace kneesim::cli

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -31,5 +32,11 @@ nlohmann::json run_wear_job(const WearJob& job);
 
 // checks cycles, interval, schedule and wear factor; throws InputError with one sentence
 void check_wear_job(const WearJob& job);
+
+// runs the jobs concurrently, one per core (or `workers`), and returns their summaries in
+// order; rethrows the first job's error after all have stopped. `done` is called after each.
+std::vector<nlohmann::json> run_wear_jobs(
+    const std::vector<WearJob>& jobs, int workers = 0,
+    const std::function<void(size_t, const nlohmann::json&)>& done = {});
 
 }  // namespace kneesim::cli

@@ -3,15 +3,9 @@ area and peak pressure over the gait cycle, one line per material.
 
 usage: compare.py OUT_DIR MATERIAL [MATERIAL ...]
 """
-import csv
+from csvdata import read_columns as read_csv
 import os
 import sys
-
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) for r in rows] for k in rows[0]}
 
 
 def main():

@@ -4,14 +4,8 @@ usage: kinematics.py KINEMATICS.csv OUT.png [--measured MEASURED.csv]
 (the measured CSV has gait_pct, ap_mm, ie_deg in the project convention; `kneesim run`
 writes it from a CSV or .sto input)
 """
-import csv
+from csvdata import read_columns as read_csv
 import sys
-
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) for r in rows] for k in rows[0]}
 
 
 def main():

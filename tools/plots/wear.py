@@ -2,14 +2,8 @@
 
 usage: wear.py WEAR.csv FINAL_DEPTH.csv WEAR.png DEPTH_MAP.png
 """
-import csv
+from csvdata import read_columns as read_csv
 import sys
-
-
-def read_csv(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) for r in rows] for k in rows[0]}
 
 
 def main():

@@ -98,7 +98,7 @@ FitResult fit_clusters(const Problem& pb, const Eigen::VectorXd& y, Effect e,
                        const std::vector<ParamSpec>& specs, const Eigen::VectorXd& start,
                        const std::vector<std::vector<int>>& clusters, double rho, bool multi) {
   auto residuals = [&](const Eigen::VectorXd& p) { return whitened(pb, y, e, p, clusters, rho); };
-  return fit_least_squares(residuals, specs, start, multi);
+  return fit_least_squares(residuals, specs, start, multi, pb.c.fit_control);
 }
 
 // clusters restricted to `rows`

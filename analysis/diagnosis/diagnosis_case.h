@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "analysis/diagnosis/effect.h"
+#include "analysis/diagnosis/fit.h"
 
 namespace kneesim::diagnosis {
 
@@ -63,6 +64,7 @@ struct DiagnosisCase {
   std::vector<Effect> candidates;      // effects applicable to these data (without none)
   std::string split_rule;              // e.g. "leave-one-specimen-out"
   std::vector<Fold> folds;             // the held-out split rule, applied
+  FitControl fit_control;              // iteration cap of every fit (simulation-based cases)
 
   // effect parameter specs for this case (bounds, starts); default: effect_info(e).params
   std::function<std::vector<ParamSpec>(Effect)> effect_params;

@@ -29,7 +29,7 @@ double sum_sq(const Eigen::VectorXd& r) {
 }
 
 FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>& specs,
-                              const Eigen::VectorXd& start) {
+                              const Eigen::VectorXd& start, const FitControl& control) {
   const Eigen::Index n = start.size();
   Eigen::VectorXd z(n);
   for (Eigen::Index i = 0; i < n; ++i) z[i] = to_z(specs[i], start[i]);
@@ -38,7 +38,7 @@ FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>
   ++out.evaluations;
   double cost = sum_sq(r);
   double lambda = 1e-3;
-  for (int iter = 0; iter < 100 && std::isfinite(cost); ++iter) {
+  for (int iter = 0; iter < control.max_iterations && std::isfinite(cost); ++iter) {
     // forward-difference Jacobian in z
     Eigen::MatrixXd jac(r.size(), n);
     for (Eigen::Index j = 0; j < n; ++j) {
@@ -66,7 +66,7 @@ FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>
         r = r_new;
         cost = c_new;
         lambda = std::max(lambda / 3.0, 1e-9);
-        improved = rel > 1e-10;
+        improved = rel > control.tolerance;
         break;
       }
       lambda *= 4.0;
@@ -81,7 +81,8 @@ FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>
 }  // namespace
 
 FitResult fit_least_squares(const ResidualsFn& residuals, const std::vector<ParamSpec>& specs,
-                            const Eigen::VectorXd& initial, bool multi_start) {
+                            const Eigen::VectorXd& initial, bool multi_start,
+                            const FitControl& control) {
   std::vector<Eigen::VectorXd> starts = {initial};
   if (multi_start) {
     for (size_t i = 0; i < specs.size(); ++i) {
@@ -99,7 +100,7 @@ FitResult fit_least_squares(const ResidualsFn& residuals, const std::vector<Para
   best.rss = std::numeric_limits<double>::infinity();
   int evaluations = 0;
   for (const auto& s : starts) {
-    FitResult r = levenberg_marquardt(residuals, specs, s);
+    FitResult r = levenberg_marquardt(residuals, specs, s, control);
     evaluations += r.evaluations;
     if (r.rss < best.rss || best.params.size() == 0) best = r;
   }

@@ -22,9 +22,16 @@ struct FitResult {
   int evaluations = 0;     // residual evaluations [-]
 };
 
+// iteration control: a forward model that is a full simulation caps the work per fit
+struct FitControl {
+  int max_iterations = 100;  // Levenberg-Marquardt iterations per start [-]
+  double tolerance = 1e-10;  // stop when a step lowers the cost by less than this fraction [-]
+};
+
 // minimises |r(params)|^2 from `initial`, plus every combination of the specs' extra starts
 // when `multi_start`
 FitResult fit_least_squares(const ResidualsFn& residuals, const std::vector<ParamSpec>& specs,
-                            const Eigen::VectorXd& initial, bool multi_start);
+                            const Eigen::VectorXd& initial, bool multi_start,
+                            const FitControl& control = {});
 
 }  // namespace kneesim::diagnosis

@@ -126,6 +126,9 @@ DiagnosisCase make_kinematics_case(MeasuredData data, std::shared_ptr<Kinematics
     return b;
   };
 
+  // every evaluation is a simulation: few iterations, stop at 0.01 % cost decrease
+  c.fit_control.max_iterations = 8;
+  c.fit_control.tolerance = 1e-4;
   c.split_rule = "2-fold cross-validation by gait phase (fit on stance 0-" +
                  std::to_string(static_cast<int>(split)) + " %, predict swing; fit on swing, "
                  "predict stance)";

@@ -148,7 +148,8 @@ KneeWearParams knee_wear_params(Effect effect, const Eigen::VectorXd& b, const E
       p.creep_time = ep[1];
       break;
     case Effect::none:
-    case Effect::friction: break;
+    case Effect::friction:
+    case Effect::restraint: break;
   }
   return p;
 }
@@ -217,13 +218,16 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
   c.predict = [shared](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep,
                        const std::vector<int>& idx) {
     const KneeWearParams p = knee_wear_params(e, b, ep, shared->reference_pressure);
+    std::map<std::string, KneeWearTable::Rates> rates;  // once per condition
     Eigen::VectorXd v(static_cast<Eigen::Index>(idx.size()));
     for (size_t i = 0; i < idx.size(); ++i) {
       const auto& m = shared->measured.rows[static_cast<size_t>(idx[i])];
       const KneeWearTable& t = *shared->tables.at(m.group);
+      auto it = rates.find(m.group);
+      if (it == rates.end()) it = rates.emplace(m.group, t.rates(p)).first;
       v[static_cast<Eigen::Index>(i)] = (m.quantity == "max_depth_mm")
-                                            ? t.max_depth(p, m.x) * 1e3
-                                            : t.volume(p, m.x) * 1e9;
+                                            ? t.max_depth(p, it->second, m.x) * 1e3
+                                            : t.volume(p, it->second, m.x) * 1e9;
     }
     return v;
   };
@@ -290,10 +294,11 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
     const KneeWearParams p = knee_wear_params(e, b, ep, shared->reference_pressure);
     std::vector<CurvePoint> out;
     for (const auto& [g, t] : shared->tables) {
+      const KneeWearTable::Rates r = t->rates(p);
       for (int i = 0; i <= 100; ++i) {
         const double n = max_cycles * 1.05 * i / 100.0;
-        out.push_back({g, "volume_mm3", n, t->volume(p, n) * 1e9});
-        if (has_depth) out.push_back({g, "max_depth_mm", n, t->max_depth(p, n) * 1e3});
+        out.push_back({g, "volume_mm3", n, t->volume(p, r, n) * 1e9});
+        if (has_depth) out.push_back({g, "max_depth_mm", n, t->max_depth(p, r, n) * 1e3});
       }
     }
     return out;

@@ -136,13 +136,18 @@ double KneeWearTable::effective_cycles(const KneeWearParams& p, double cycles) c
                       (1.0 - std::exp(-cycles / p.running_in_cycles));
 }
 
-double KneeWearTable::volume(const KneeWearParams& p, double cycles) const {
-  return p.k * area_.dot(element_depth_rate(p)) * effective_cycles(p, cycles);
+KneeWearTable::Rates KneeWearTable::rates(const KneeWearParams& p) const {
+  const Eigen::VectorXd d = element_depth_rate(p);
+  const Eigen::VectorXd vd = spread_ * d;
+  return {p.k * area_.dot(d), vd.size() > 0 ? p.k * vd.maxCoeff() : 0.0};
 }
 
-double KneeWearTable::max_depth(const KneeWearParams& p, double cycles) const {
-  const Eigen::VectorXd vd = spread_ * element_depth_rate(p);
-  double depth = (vd.size() > 0 ? vd.maxCoeff() : 0.0) * p.k * effective_cycles(p, cycles);
+double KneeWearTable::volume(const KneeWearParams& p, const Rates& r, double cycles) const {
+  return r.volume * effective_cycles(p, cycles);
+}
+
+double KneeWearTable::max_depth(const KneeWearParams& p, const Rates& r, double cycles) const {
+  double depth = r.max_depth * effective_cycles(p, cycles);
   if (p.effect == Effect::creep) {
     depth += p.creep_ratio * max_penetration_ * (1.0 - std::exp(-cycles * period_ / p.creep_time));
   }

@@ -53,9 +53,19 @@ class KneeWearTable {
   // std::runtime_error when the simulation stops on numerical trouble
   KneeWearTable(const std::string& name, const models::Config& config);
 
+  // per-cycle figures of a law: everything a prediction needs (computed once per condition)
+  struct Rates {
+    double volume = 0.0;     // volume per cycle [m^3]
+    double max_depth = 0.0;  // largest vertex depth per cycle [m]
+  };
+  Rates rates(const KneeWearParams& p) const;
   // volume after `cycles` [m^3] and maximum linear depth [m] (creep included for creep)
-  double volume(const KneeWearParams& p, double cycles) const;
-  double max_depth(const KneeWearParams& p, double cycles) const;
+  double volume(const KneeWearParams& p, const Rates& r, double cycles) const;
+  double max_depth(const KneeWearParams& p, const Rates& r, double cycles) const;
+  double volume(const KneeWearParams& p, double cycles) const { return volume(p, rates(p), cycles); }
+  double max_depth(const KneeWearParams& p, double cycles) const {
+    return max_depth(p, rates(p), cycles);
+  }
 
   const std::string& name() const { return name_; }
   double friction() const { return friction_; }             // [-]

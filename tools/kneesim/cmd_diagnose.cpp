@@ -10,6 +10,7 @@
 #include "engine/errors.h"
 #include "tools/kneesim/bor_options.h"
 #include "tools/kneesim/commands.h"
+#include "tools/kneesim/diagnose_knee.h"
 #include "tools/kneesim/diagnosis_output.h"
 
 namespace kneesim::cli {
@@ -69,6 +70,8 @@ void add_diagnose_command(CLI::App& app) {
                   "extend the model and measure the gain");
   diagnose->require_subcommand(1);
   add_diagnose_bor(diagnose);
+  add_diagnose_knee_wear(diagnose);
+  add_diagnose_kinematics(diagnose);
 }
 
 }  // namespace kneesim::cli

@@ -1,0 +1,50 @@
+// Hidden-effect generators for the knee diagnosis tests: synthetic measured data made by the
+// SAME forward models the diagnosis fits, with one hidden effect at a randomised magnitude (or
+// none) plus specimen and measurement scatter.
+//
+// Knee wear (conditions of tests/diagnosis_knee/knee_conditions.toml: iso, low_ie, high_load;
+// 3 specimens each; 0.25, 0.5, 1, 1.5, 2, 3 Mc):
+//   k = 2.643e-10 mm^3/(N mm) x U(0.8, 1.25); specimen k lognormal 5 % CV
+//   running_in: extra volume 10-30 % of the 3 Mc volume, N_r 1e5-4e5 cycles
+//   pressure_dependent_wear: alpha 0.7-1.5 (p_ref: the iso condition's mean pressure)
+//   cross_shear: the iso condition wears 40-100 % more than without cross-shear
+//   creep: phi 0.5-1.5 of the elastic penetration, tau 2e4-2e5 s
+//   noise: volume 0.2 mm^3 + 2 %, depth 3 um + 3 % (one standard deviation)
+// Kinematics (generic implant, stanmore rig, 3 mm elements, one simulated cycle per
+// evaluation): measured AP and IE every 2 %:
+//   friction: mu 0.02-0.035 or 0.14-0.22 (nominal 0.07)
+//   restraint: stiffness scale 0.25-0.5 or 2.5-5, gap 1-5 mm
+//   registration offsets U(-1, 1) mm and deg; noise 0.15 mm and 0.25 deg (white)
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "analysis/diagnosis/kinematics_sim.h"
+#include "analysis/diagnosis/knee_wear_case.h"
+
+namespace kneesim::test {
+
+struct KneeSynthetic {
+  diagnosis::MeasuredData data;
+  diagnosis::Effect truth = diagnosis::Effect::none;
+  std::map<std::string, double> params;  // hidden parameters [I/O units]
+};
+
+// the config of the knee tests (tests/diagnosis_knee/knee_conditions.toml)
+std::string knee_test_config();
+
+// the forward tables of the three test conditions (simulated once per process)
+const diagnosis::KneeWearTables& knee_test_tables();
+
+KneeSynthetic make_synthetic_knee_wear(diagnosis::Effect effect, std::uint64_t seed,
+                                       bool with_depth);
+
+// the kinematics simulator of the test rig (built once per process)
+std::shared_ptr<diagnosis::KinematicsSimulator> kinematics_test_simulator();
+
+KneeSynthetic make_synthetic_kinematics(diagnosis::Effect effect, std::uint64_t seed);
+
+}  // namespace kneesim::test

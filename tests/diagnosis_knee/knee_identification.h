@@ -1,0 +1,35 @@
+// Shared driver of the knee hidden-effect tests: runs the knee-wear or kinematics diagnosis on
+// synthetic data sets of every applicable effect over a range of seeds and counts the
+// identifications (the generators and their magnitude ranges: knee_hidden_effect.h).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "analysis/diagnosis/effect.h"
+
+namespace kneesim::test {
+
+struct KneeTally {
+  int runs = 0;             // data sets diagnosed [-]
+  int correct = 0;          // right effect named (including "none" for clean data) [-]
+  int false_positives = 0;  // an effect named for clean data [-]
+  int low_gain = 0;         // right effect named but gain below the threshold [-]
+  double min_gain = 1.0;    // smallest gain among the data sets with an effect [-]
+  double max_seconds = 0.0; // slowest diagnosis [s]
+  double total_seconds = 0.0;  // all diagnoses [s]
+  std::string failures;     // one line per wrong identification
+  std::string gains;        // effect: gain per data set, for the log
+};
+
+constexpr double kKneeWearMinGain = 0.2;   // required gain of a named knee-wear effect [-]
+constexpr double kKinematicsMinGain = 0.2; // required gain of a named kinematic effect [-]
+
+// seeds first_seed .. first_seed + seeds - 1 for each effect in `effects`
+KneeTally run_knee_wear_identification(const std::vector<diagnosis::Effect>& effects,
+                                       std::uint64_t first_seed, int seeds, bool with_depth);
+KneeTally run_kinematics_identification(const std::vector<diagnosis::Effect>& effects,
+                                        std::uint64_t first_seed, int seeds);
+
+}  // namespace kneesim::test

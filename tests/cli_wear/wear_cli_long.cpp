@@ -7,6 +7,8 @@
 //    UHMWPE < PEEK < CFR-PEEK (the materials study: 13.4 < 23.6 < 36.1 MPa); volumetric wear
 //    ranks CFR-PEEK < UHMWPE < PEEK with the library's wear factors (k = 3.44e-11, 2.643e-10,
 //    6.34e-10 mm^3/(N mm); the materials study: 15.6 < 124.0 < 300.9 mm^3);
+//    and a material's wear.csv is the same as a lone `kneesim wear` run's (concurrency
+//    changes nothing);
 //  - `kneesim wear` killed before its first checkpoint, or after its last one (while the
 //    plots are drawn): --resume writes the same wear.csv, final_depth.csv and kinematics.csv
 //    as an uninterrupted run.
@@ -70,6 +72,15 @@ TEST_CASE("kneesim compare: comparison.csv with the columns and the rankings of 
   // the markdown table and each material's own wear run are there too
   CHECK(fs::exists(out / "comparison.md"));
   for (const char* m : {"uhmwpe", "peek", "cfr-peek"}) CHECK(fs::exists(out / m / "wear.csv"));
+  // running the materials concurrently changes nothing: PEEK's wear.csv equals that of a
+  // lone `kneesim wear --material peek` with the same settings, byte for byte
+  const fs::path alone = tmp.path / "peek_alone";
+  const Result w = run_kneesim({"wear", "--material", "peek", "--cycles", "500000",
+                                "--update-every", "250000", "--set", "implant.edge_length_mm=2",
+                                "--quiet", "--out", alone.string()},
+                               tmp.path, "alone");
+  REQUIRE(w.exit_code == 0);
+  CHECK(same_bytes(slurp(alone / "wear.csv"), slurp(out / "peek" / "wear.csv")));
 }
 
 TEST_CASE("kneesim wear killed before its first checkpoint: --resume starts afresh, same wear.csv") {

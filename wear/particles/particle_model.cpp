@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "engine/errors.h"
 #include "wear/particles/contact.h"
@@ -58,6 +59,16 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
   const Grid& g = c.grid;
   check_grid(g, c.nz, source);
   const double load = window_load(c);
+  const double cap = c.softer.hardness * g.nx * g.dx * g.ny * g.dy;
+  if (c.load > 0.0 && load > cap) {
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "%s: load %g N puts %g N on the %.3g um contact window, more than hardness x "
+                  "window area = %g N (allowed load up to %g N); lower the load or enlarge the grid",
+                  source.c_str(), c.load, load, g.ny * g.dy * 1e6, cap,
+                  cap / load * c.load);
+    throw InputError(buf);
+  }
   check_load(load, c.softer.hardness, g, source);
   const int nx = g.nx, ny = g.ny;
   const long n = g.size();

@@ -25,6 +25,8 @@ struct WearArgs {
   bool allow_any_wear_factor = false;
   bool quiet = false;
   std::vector<long> convergence;  // update intervals of a convergence study
+  std::string wear_law = "archard";
+  std::vector<std::string> law_params;  // name=value
 };
 
 // the same prediction at several update intervals, concurrently; the finest is the reference
@@ -88,10 +90,13 @@ void run(const WearArgs& a) {
   job.resume = a.resume;
   job.allow_any_wear_factor = a.allow_any_wear_factor;
   job.quiet = a.quiet;
+  job.wear_law = a.wear_law;
+  job.law_params = a.law_params;
   std::ostringstream id;
   id << "wear v1\n" << (a.config.empty() ? std::string() : io::read_file(a.config)) << "\n";
   for (const auto& o : overrides) id << o.key << "=" << o.value << "\n";
-  id << a.cycles << " " << a.update_every;
+  id << a.cycles << " " << a.update_every << " " << a.wear_law;
+  for (const auto& p : a.law_params) id << " " << p;
   for (long s : a.schedule) id << " " << s;
   job.identity_text = id.str();
   const nlohmann::json s = run_wear_job(job);
@@ -135,6 +140,15 @@ void add_wear_command(CLI::App& app) {
                   "update-interval convergence study: run the prediction once per listed "
                   "interval (e.g. 1000000,500000,250000,100000,50000) into DIR/every_<N>/ and "
                   "write DIR/convergence.csv and .md (changes against the finest)")
+      ->delimiter(',');
+  cmd->add_option("--wear-law", args->wear_law,
+                  "wear law: archard, pressure_dependent_wear (k (p / p_ref)^-alpha) or "
+                  "cross_shear (k (1 + beta CS)), the extensions `kneesim diagnose knee-wear` "
+                  "fits")
+      ->capture_default_str();
+  cmd->add_option("--law-param", args->law_params,
+                  "wear-law parameters name=value: alpha, p_ref_MPa (pressure_dependent_wear), "
+                  "beta (cross_shear)")
       ->delimiter(',');
   cmd->add_flag("--allow-any-wear-factor", args->allow_any_wear_factor,
                 "accept wear factors outside 1e-12..1e-6 mm^3/(N mm)");

@@ -2,6 +2,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <thread>
 #include <cstdio>
@@ -84,7 +86,47 @@ void clear_outputs(const std::filesystem::path& dir) {
 
 }  // namespace
 
+// the job's wear law with its parameters; throws InputError naming the option
+static wear::WearLawParams make_wear_law(const WearJob& j) {
+  wear::WearLawParams law;
+  auto bad = [](const std::string& s) { throw InputError("--law-param " + s); };
+  if (j.wear_law == "archard") {
+    law.law = wear::WearLaw::kArchard;
+  } else if (j.wear_law == "pressure_dependent_wear") {
+    law.law = wear::WearLaw::kPressureDependent;
+  } else if (j.wear_law == "cross_shear") {
+    law.law = wear::WearLaw::kCrossShear;
+  } else {
+    throw InputError("--wear-law = '" + j.wear_law + "' is not allowed; allowed: archard, "
+                     "pressure_dependent_wear, cross_shear");
+  }
+  for (const std::string& text : j.law_params) {
+    const size_t eq = text.find('=');
+    const std::string name = text.substr(0, eq);
+    char* end = nullptr;
+    const double v = eq == std::string::npos ? NAN : std::strtod(text.c_str() + eq + 1, &end);
+    if (eq == std::string::npos || end == text.c_str() + eq + 1 || *end != '\0' || !std::isfinite(v)) {
+      bad("'" + text + "' is not name=number");
+    }
+    if (law.law == wear::WearLaw::kPressureDependent && name == "alpha") {
+      if (v < -3.0 || v > 4.0) bad("alpha = " + text.substr(eq + 1) + " is outside [-3, 4]");
+      law.alpha = v;
+    } else if (law.law == wear::WearLaw::kPressureDependent && name == "p_ref_MPa") {
+      if (v < 0.01 || v > 1000.0) bad("p_ref_MPa = " + text.substr(eq + 1) + " is outside [0.01, 1000]");
+      law.p_ref = v * 1e6;
+    } else if (law.law == wear::WearLaw::kCrossShear && name == "beta") {
+      if (v < 0.0 || v > 1000.0) bad("beta = " + text.substr(eq + 1) + " is outside [0, 1000]");
+      law.beta = v;
+    } else {
+      bad("'" + name + "' is not a parameter of --wear-law " + j.wear_law +
+          " (pressure_dependent_wear: alpha, p_ref_MPa; cross_shear: beta; archard: none)");
+    }
+  }
+  return law;
+}
+
 void check_wear_job(const WearJob& j) {
+  make_wear_law(j);
   if (j.cycles <= 0) {
     throw InputError("--cycles = " + std::to_string(j.cycles) + " is not allowed (a positive "
                      "number of gait cycles)");
@@ -135,7 +177,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
   o.total_cycles = j.cycles;
   o.update_every = j.update_every;
   o.schedule = j.schedule;
-  o.law.law = wear::WearLaw::kArchard;
+  o.law = make_wear_law(j);
   o.law.wear_factor = mat.wear_factor_mm3_per_Nmm * wear::kWearFactorSI;
   o.law.friction = built.model.contact.friction;
   o.checkpoint = j.out / "wear.checkpoint";
@@ -163,6 +205,8 @@ nlohmann::json run_wear_job(const WearJob& j) {
   summary["updates"] = static_cast<int>(result.records.size()) - 1;
   summary["seconds"] = seconds;
   summary["wear_factor_mm3_per_Nmm"] = mat.wear_factor_mm3_per_Nmm;
+  summary["wear_law"] = j.wear_law;
+  summary["wear_law_params"] = j.law_params;
   summary["density_g_per_cm3"] = mat.density_g_per_cm3;
   summary["sarkar_factor"] = wear::sarkar_factor(built.model.contact.friction);
   if (result.resumed_from_update >= 0) summary["resumed_after_update"] = result.resumed_from_update;

@@ -24,6 +24,10 @@ struct WearJob {
   bool quiet = false;
   bool plots = true;
   bool depth_maps = true;         // a .vtp per update
+  // wear law (the diagnosis effects, wear/wear_accumulator.h): "archard",
+  // "pressure_dependent_wear" (alpha [-], p_ref_MPa [MPa]) or "cross_shear" (beta [-])
+  std::string wear_law = "archard";
+  std::vector<std::string> law_params;  // "name=value" in I/O units
 };
 
 // runs the job; returns the summary written to out/summary.json; throws InputError for bad

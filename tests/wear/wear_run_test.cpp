@@ -175,6 +175,10 @@ TEST_CASE("resume after the time step adapted equals the uninterrupted run, bit 
   const wear::WearResult ref = wear::run_wear(built, o);
   REQUIRE(ref.status == engine::StepStatus::kOk);
   REQUIRE(ref.records.size() == 4);
+  // the schedule in order, its last entry repeated (issue 3: "a list, shorter early")
+  CHECK(ref.records[1].cycles == 1'500'000.0);
+  CHECK(ref.records[2].cycles == 1'750'000.0);
+  CHECK(ref.records[3].cycles == 2'000'000.0);
 
   TempDir dir;
   o.checkpoint = dir.path / "wear.checkpoint";

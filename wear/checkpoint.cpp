@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <array>
 
 #include "engine/errors.h"
 #include "tools/io/atomic_file.h"
@@ -11,7 +12,7 @@
 namespace kneesim::wear {
 namespace {
 
-constexpr char kMagic[16] = "kneesim-wear-v1";
+constexpr char kMagic[16] = "kneesim-wear-v2";
 
 class Writer {
  public:
@@ -63,6 +64,41 @@ class Reader {
   size_t pos_ = 0;
 };
 
+// a frame as a flat list of doubles: to_doubles copies f into d, otherwise d into f
+constexpr size_t kFrameDoubles = 2 + 12 + 12 + 3 + 3 + 2 + 2 + 6 + 4 + 2;
+void frame_fields(engine::Frame& f, std::array<double, kFrameDoubles>& d, bool to_doubles) {
+  size_t i = 0;
+  auto field = [&](double& x) {
+    if (to_doubles) {
+      d[i] = x;
+    } else {
+      x = d[i];
+    }
+    ++i;
+  };
+  field(f.gait_pct);
+  field(f.time);
+  for (auto& c : f.q)
+    for (double& x : c) field(x);
+  for (auto& c : f.applied)
+    for (double& x : c) field(x);
+  for (int k = 0; k < 3; ++k) field(f.restraint[k]);
+  engine::ContactSummary& s = f.contact;
+  for (int k = 0; k < 3; ++k) field(s.force_W[k]);
+  for (double& x : s.normal_force) field(x);
+  for (double& x : s.area) field(x);
+  for (auto& p : s.cop_T)
+    for (int k = 0; k < 3; ++k) field(p[k]);
+  field(s.peak_pressure);
+  field(s.mean_pressure);
+  field(s.max_penetration);
+  field(s.max_penetration_ratio);
+  double n = s.elements_in_contact;
+  field(n);
+  s.elements_in_contact = static_cast<int>(n);
+  field(s.omega_max);
+}
+
 }  // namespace
 
 uint64_t fnv1a(const void* data, size_t n, uint64_t h) {
@@ -94,6 +130,12 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
   w.put_doubles(c.vertex_depth.data(), c.vertex_depth.size());
   w.put(static_cast<uint64_t>(c.records.size()));
   for (const auto& r : c.records) w.put_doubles(&r.cycles, UpdateRecord::kFields);
+  w.put(static_cast<uint64_t>(c.frames.size()));
+  for (const auto& f : c.frames) {
+    std::array<double, kFrameDoubles> d;
+    frame_fields(const_cast<engine::Frame&>(f), d, true);
+    w.put_doubles(d.data(), d.size());
+  }
   const uint64_t hash = fnv1a(w.bytes().data(), w.bytes().size());
   w.put(hash);
   io::write_file_atomic(path, w.bytes());
@@ -140,6 +182,12 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, uint64_t expected_
   r.get_doubles(c.vertex_depth.data(), c.vertex_depth.size());
   c.records.resize(r.count(limit));
   for (auto& rec : c.records) r.get_doubles(&rec.cycles, UpdateRecord::kFields);
+  c.frames.resize(r.count(bytes.size() / (kFrameDoubles * sizeof(double))));
+  for (auto& f : c.frames) {
+    std::array<double, kFrameDoubles> d;
+    r.get_doubles(d.data(), d.size());
+    frame_fields(f, d, false);
+  }
   return c;
 }
 

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "engine/simulate.h"
 #include "engine/state.h"
 #include "wear/wear_loop.h"
 
@@ -23,6 +24,7 @@ struct Checkpoint {
   std::vector<Eigen::Vector3d> insert_vertices;  // [m]
   std::vector<double> vertex_depth;        // cumulative per articular vertex [m]
   std::vector<UpdateRecord> records;
+  std::vector<engine::Frame> frames;       // kinematics of the last simulated cycle
 };
 
 void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/errors.h"
 #include "tools/io/atomic_file.h"
 #include "wear/checkpoint.h"
 #include "wear/geometry_update.h"
@@ -91,12 +92,20 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
 
   if (o.resume) {
     const Checkpoint c = read_checkpoint(o.checkpoint, o.identity);
+    if (c.insert_vertices.size() != insert.vertices.size() ||
+        c.vertex_depth.size() != depth.size()) {
+      throw InputError(o.checkpoint.string() + ": the checkpoint holds an insert of " +
+                       std::to_string(c.insert_vertices.size()) + " vertices, the model has " +
+                       std::to_string(insert.vertices.size()) + "; it belongs to another "
+                       "implant or mesh: delete it or run without --resume");
+    }
     cycles_done = c.cycles_done;
     u = c.next_update;
     state = c.state;
     insert.vertices = c.insert_vertices;
     depth = c.vertex_depth;
     result.records = c.records;
+    result.frames = c.frames;
     result.resumed_from_update = u;
     model.dt = c.dt;  // the step the run had adapted to (wear makes the contact stiffer)
     model.insert = models::make_worn_insert_surface(pristine, insert);
@@ -162,6 +171,9 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
       std::vector<double> step_depth(per_cycle.size());
       for (size_t v = 0; v < per_cycle.size(); ++v) step_depth[v] = per_cycle[v] * interval;
       rec = recede(insert, pristine.implant.articular_vertex_to_insert, normals, step_depth);
+      // against the pristine insert too: a face may also turn over a little per update
+      rec.inverted_faces =
+          std::max(rec.inverted_faces, count_inverted_faces(pristine.implant.insert, rec.insert));
       if (rec.inverted_faces == 0 || interval <= 1) break;
       interval = std::max(1L, interval / 2);
       ++refinements;
@@ -177,8 +189,10 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
     }
     if (rec.inverted_faces > 0) {
       result.status = engine::StepStatus::kRunawayPenetration;
-      result.message = "a single wear cycle would invert " + std::to_string(rec.inverted_faces) +
-                       " insert faces";
+      result.message = "after " + std::to_string(cycles_done) + " cycles a single wear cycle "
+                       "would fold " + std::to_string(rec.inverted_faces) + " insert faces "
+                       "(reversed or collapsed against the pristine insert: the wear scar has "
+                       "reached faces that do not recede with it, e.g. the side walls)";
       break;
     }
     for (size_t v = 0; v < depth.size(); ++v) depth[v] += per_cycle[v] * interval;
@@ -204,6 +218,7 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
       c.vertex_depth = depth;
       c.records = result.records;
       c.dt = model.dt;
+      c.frames = result.frames;
       write_checkpoint(o.checkpoint, c);
     }
     if (o.progress) o.progress(static_cast<double>(cycles_done) / o.total_cycles);

@@ -54,7 +54,12 @@ FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>
     for (int tries = 0; tries < 12; ++tries) {
       Eigen::MatrixXd a = jtj;
       a.diagonal() += lambda * (jtj.diagonal().array() + 1e-12).matrix();
-      const Eigen::VectorXd step = a.ldlt().solve(-g);
+      Eigen::VectorXd step = a.ldlt().solve(-g);
+      // a parameter the residuals do not depend on here (clamped at a bound, so its column is
+      // exactly zero) stays put; its near-zero pivot would otherwise turn rounding into a step
+      for (Eigen::Index j = 0; j < n; ++j) {
+        if (jtj(j, j) == 0.0) step[j] = 0.0;
+      }
       Eigen::VectorXd z_new = z + step;
       for (Eigen::Index i = 0; i < n; ++i) z_new[i] = to_z(specs[i], from_z(specs[i], z_new[i]));
       const Eigen::VectorXd r_new = f(params_of(specs, z_new));

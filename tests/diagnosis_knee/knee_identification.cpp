@@ -28,6 +28,10 @@ void tally(KneeTally& t, diagnosis::Effect truth, std::uint64_t seed,
     t.failures += line;
   }
   if (truth == diagnosis::Effect::none && r.effect() != diagnosis::Effect::none) ++t.false_positives;
+  if (truth != diagnosis::Effect::none && r.effect() != diagnosis::Effect::none &&
+      r.effect() != truth) {
+    ++t.wrong_effect;
+  }
   if (truth != diagnosis::Effect::none) {
     t.min_gain = std::min(t.min_gain, r.gain);
     if (r.effect() == truth && r.gain < min_gain) ++t.low_gain;

@@ -15,6 +15,7 @@ struct KneeTally {
   int runs = 0;             // data sets diagnosed [-]
   int correct = 0;          // right effect named (including "none" for clean data) [-]
   int false_positives = 0;  // an effect named for clean data [-]
+  int wrong_effect = 0;     // a different effect named for data with an effect [-]
   int low_gain = 0;         // right effect named but gain below the threshold [-]
   double min_gain = 1.0;    // smallest gain among the data sets with an effect [-]
   double max_seconds = 0.0; // slowest diagnosis [s]

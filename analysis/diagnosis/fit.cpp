@@ -56,9 +56,11 @@ FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>
       a.diagonal() += lambda * (jtj.diagonal().array() + 1e-12).matrix();
       Eigen::VectorXd step = a.ldlt().solve(-g);
       // a parameter the residuals do not depend on here (clamped at a bound, so its column is
-      // exactly zero) stays put; its near-zero pivot would otherwise turn rounding into a step
+      // zero up to rounding: exp(log(b)) differs from b in the last bit) stays put; its
+      // near-zero pivot would otherwise turn rounding into a step
+      const double diag_max = jtj.diagonal().maxCoeff();
       for (Eigen::Index j = 0; j < n; ++j) {
-        if (jtj(j, j) == 0.0) step[j] = 0.0;
+        if (jtj(j, j) <= 1e-14 * diag_max) step[j] = 0.0;
       }
       Eigen::VectorXd z_new = z + step;
       for (Eigen::Index i = 0; i < n; ++i) z_new[i] = to_z(specs[i], from_z(specs[i], z_new[i]));

@@ -57,6 +57,7 @@ std::vector<double> WearAccumulator::depth_per_cycle() const {
     double k = params_.wear_factor;
     switch (params_.law) {
       case WearLaw::kArchard:
+      case WearLaw::kRunningIn:  // weighted by the cycles' running-in factor in the loop
       case WearLaw::kPressureDependent:  // weighted per step in observe()
         break;
       case WearLaw::kCrossShear:  // needs the whole cycle's sliding path
@@ -66,6 +67,12 @@ std::vector<double> WearAccumulator::depth_per_cycle() const {
     out[e] = k * sarkar * depth_[e];
   }
   return out;
+}
+
+double effective_cycles(const WearLawParams& law, double n0, double n) {
+  if (law.law != WearLaw::kRunningIn || law.running_in_cycles <= 0.0) return n;
+  const double nr = law.running_in_cycles;
+  return n + law.running_in_excess * nr * (std::exp(-n0 / nr) - std::exp(-(n0 + n) / nr));
 }
 
 }  // namespace kneesim::wear

@@ -16,6 +16,7 @@ enum class WearLaw {
   kArchard,          // constant k (the baseline)
   kPressureDependent,  // k = k_ref (p / p_ref)^-alpha (Mazzucco & Spector 2003)
   kCrossShear,       // k = k_ref * (1 + beta * CS) with the element's cross-shear ratio CS
+  kRunningIn,        // dV/dN = k F S (1 + a exp(-N / N_r)): extra early wear (Hussin 2024)
 };
 
 struct WearLawParams {
@@ -25,7 +26,14 @@ struct WearLawParams {
   double p_ref = 10e6;        // reference pressure of the pressure-dependent law [Pa]
   double alpha = 0.0;         // exponent of the pressure-dependent law [-]
   double beta = 0.0;          // cross-shear gain [-]
+  double running_in_excess = 0.0;    // a, initial extra wear-rate ratio [-]
+  double running_in_cycles = 2e5;    // N_r, running-in decay constant [cycles]
 };
+
+// the cycles [n0, n0 + n] weighted by the law's wear-rate factor: n, or for running-in
+// n + a N_r (exp(-n0 / N_r) - exp(-(n0 + n) / N_r)) [cycles]; the wear loop scales the depth of
+// one simulated cycle by it
+double effective_cycles(const WearLawParams& law, double n0, double n);
 
 class WearAccumulator {
  public:

@@ -169,7 +169,8 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
     int refinements = 0;
     for (;;) {
       std::vector<double> step_depth(per_cycle.size());
-      for (size_t v = 0; v < per_cycle.size(); ++v) step_depth[v] = per_cycle[v] * interval;
+      const double n_eff = effective_cycles(o.law, static_cast<double>(cycles_done), interval);
+      for (size_t v = 0; v < per_cycle.size(); ++v) step_depth[v] = per_cycle[v] * n_eff;
       rec = recede(insert, pristine.implant.articular_vertex_to_insert, normals, step_depth);
       // against the pristine insert too: a face may also turn over a little per update
       rec.inverted_faces =
@@ -195,7 +196,8 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
                        "reached faces that do not recede with it, e.g. the side walls)";
       break;
     }
-    for (size_t v = 0; v < depth.size(); ++v) depth[v] += per_cycle[v] * interval;
+    const double n_eff = effective_cycles(o.law, static_cast<double>(cycles_done), interval);
+    for (size_t v = 0; v < depth.size(); ++v) depth[v] += per_cycle[v] * n_eff;
     insert = std::move(rec.insert);
     model.insert = models::make_worn_insert_surface(pristine, insert);
     cycles_done += interval;

@@ -73,7 +73,12 @@ nlohmann::json check_linear_wear(const diagnosis::DiagnosisCase& c,
       o.law.law = wear::WearLaw::kCrossShear;
       o.law.beta = p.cross_shear_gain;
       break;
-    default:  // running-in and creep add terms outside the loop: check the Archard part
+    case diagnosis::Effect::running_in:
+      o.law.law = wear::WearLaw::kRunningIn;
+      o.law.running_in_excess = p.running_in_excess;
+      o.law.running_in_cycles = p.running_in_cycles;
+      break;
+    default:  // creep adds depth outside the loop: check the Archard part
       o.law.law = wear::WearLaw::kArchard;
       p.effect = diagnosis::Effect::none;
       break;

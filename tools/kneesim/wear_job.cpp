@@ -96,9 +96,11 @@ static wear::WearLawParams make_wear_law(const WearJob& j) {
     law.law = wear::WearLaw::kPressureDependent;
   } else if (j.wear_law == "cross_shear") {
     law.law = wear::WearLaw::kCrossShear;
+  } else if (j.wear_law == "running_in") {
+    law.law = wear::WearLaw::kRunningIn;
   } else {
     throw InputError("--wear-law = '" + j.wear_law + "' is not allowed; allowed: archard, "
-                     "pressure_dependent_wear, cross_shear");
+                     "pressure_dependent_wear, cross_shear, running_in");
   }
   for (const std::string& text : j.law_params) {
     const size_t eq = text.find('=');
@@ -117,9 +119,16 @@ static wear::WearLawParams make_wear_law(const WearJob& j) {
     } else if (law.law == wear::WearLaw::kCrossShear && name == "beta") {
       if (v < 0.0 || v > 1000.0) bad("beta = " + text.substr(eq + 1) + " is outside [0, 1000]");
       law.beta = v;
+    } else if (law.law == wear::WearLaw::kRunningIn && name == "running_in_excess") {
+      if (v < 0.0 || v > 1e4) bad("running_in_excess = " + text.substr(eq + 1) + " is outside [0, 1e4]");
+      law.running_in_excess = v;
+    } else if (law.law == wear::WearLaw::kRunningIn && name == "running_in_cycles") {
+      if (v < 1.0 || v > 1e9) bad("running_in_cycles = " + text.substr(eq + 1) + " is outside [1, 1e9]");
+      law.running_in_cycles = v;
     } else {
       bad("'" + name + "' is not a parameter of --wear-law " + j.wear_law +
-          " (pressure_dependent_wear: alpha, p_ref_MPa; cross_shear: beta; archard: none)");
+          " (pressure_dependent_wear: alpha, p_ref_MPa; cross_shear: beta; running_in: "
+          "running_in_excess, running_in_cycles; archard: none)");
     }
   }
   return law;

@@ -84,15 +84,15 @@ class KneeWearTable {
   Eigen::VectorXd element_depth_rate(const KneeWearParams& p) const;
   double effective_cycles(const KneeWearParams& p, double cycles) const;
 
-  std::string name_;
-  double friction_ = 0.07;
-  double sarkar_ = 1.0;
-  double period_ = 1.0;
-  double max_penetration_ = 0.0;
-  double work_ = 0.0;
-  double mean_pressure_ = 0.0;
-  double mean_cross_shear_ = 0.0;
-  double seconds_ = 0.0;
+  std::string name_;               // condition name
+  double friction_ = 0.07;         // mu of the contact [-]
+  double sarkar_ = 1.0;            // sqrt(1 + 3 mu^2) [-]
+  double period_ = 1.0;            // gait cycle [s]
+  double max_penetration_ = 0.0;   // largest elastic penetration of the cycle [m]
+  double work_ = 0.0;              // sum A p ds [J]
+  double mean_pressure_ = 0.0;     // work-weighted geometric mean pressure [Pa]
+  double mean_cross_shear_ = 0.0;  // work-weighted mean CS [-]
+  double seconds_ = 0.0;           // build and simulation wall time [s]
   Eigen::VectorXd area_;          // kept element areas [m^2]
   Eigen::VectorXd cross_shear_;   // kept element CS [-]
   Eigen::MatrixXd pds_;           // kept elements x bins: sum p ds [Pa m]

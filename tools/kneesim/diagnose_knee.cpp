@@ -35,11 +35,11 @@ void append_report(const std::filesystem::path& out, const std::string& section)
 }
 
 struct DiagnoseKneeWearOptions {
-  std::string measured, config;
-  std::vector<std::string> sets;
-  std::string calibration_condition;
-  double steady_state_from_cycles = 5e5;
-  int check_updates = 4;
+  std::string measured, config;           // CSV and TOML paths
+  std::vector<std::string> sets;          // key=value overrides of every condition
+  std::string calibration_condition;      // "" = the first condition in the CSV
+  double steady_state_from_cycles = 5e5;  // [cycles]
+  int check_updates = 4;                  // wear-loop updates of the check, 0 = none [-]
   DiagnoseCommonOptions common;
 };
 
@@ -178,10 +178,10 @@ void run_diagnose_knee_wear(const DiagnoseKneeWearOptions& o) {
 }
 
 struct DiagnoseKinematicsOptions {
-  std::string measured, config;
-  std::vector<std::string> sets;
-  double stance_end_pct = 60.0;
-  bool multi_start = false;
+  std::string measured, config;  // CSV or .sto, and TOML paths
+  std::vector<std::string> sets; // key=value overrides
+  double stance_end_pct = 60.0;  // end of stance in the phase split [%]
+  bool multi_start = false;      // multi-start the full-data fits
   DiagnoseCommonOptions common;
 };
 

@@ -24,12 +24,13 @@ MeasuredData read_kinematics_measured(const std::string& path, const Eigen::Vect
   MeasuredData d;
   d.source = path;
   d.x_name = "gait_pct";
+  const std::string group = std::filesystem::path(path).stem().string();  // plot legend
   if (std::filesystem::path(path).extension() == ".sto") {
     const loads::MeasuredKinematics k = loads::read_kinematics(path, p_FR_F);
     for (const char* q : kQuantities) {
       const std::vector<double>& v = std::string(q) == "ap_mm" ? k.ap_mm : k.ie_deg;
       for (size_t i = 0; i < k.size(); ++i) {
-        d.rows.push_back({"measured", "", q, k.gait_pct[i], v[i], static_cast<int>(i) + 2});
+        d.rows.push_back({group, "", q, k.gait_pct[i], v[i], static_cast<int>(i) + 2});
       }
     }
     return d;
@@ -52,7 +53,7 @@ MeasuredData read_kinematics_measured(const std::string& path, const Eigen::Vect
         last = pct;
       }
       const double v = (col == c_ap) ? t.number(r, col, -100.0, 100.0) : t.number(r, col, -90.0, 90.0);
-      d.rows.push_back({"measured", "", q, pct, v, t.lines[r]});
+      d.rows.push_back({group, "", q, pct, v, t.lines[r]});
     }
   }
   if (t.cells.size() < 8) {
@@ -140,14 +141,15 @@ DiagnosisCase make_kinematics_case(MeasuredData data, std::shared_ptr<Kinematics
   }
   c.folds = {to_swing, to_stance};
 
-  c.curves = [sim](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep) {
+  const std::string group = c.measured.rows.front().group;
+  c.curves = [sim, group](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep) {
     const auto trace = sim->run(e, ep);
     std::vector<CurvePoint> out;
     for (size_t i = 0; trace->ok && i < trace->gait_pct.size(); ++i) {
-      out.push_back({"measured", "ap_mm", trace->gait_pct[i], trace->ap_mm[i] + b[0]});
+      out.push_back({group, "ap_mm", trace->gait_pct[i], trace->ap_mm[i] + b[0]});
     }
     for (size_t i = 0; trace->ok && i < trace->gait_pct.size(); ++i) {
-      out.push_back({"measured", "ie_deg", trace->gait_pct[i], trace->ie_deg[i] + b[1]});
+      out.push_back({group, "ie_deg", trace->gait_pct[i], trace->ie_deg[i] + b[1]});
     }
     return out;
   };

@@ -4,6 +4,8 @@
 // messages' required content, checked by substrings.
 #include <doctest/doctest.h>
 
+#include "tests/loads/temp_dir.h"
+
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -18,22 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;  // removed at the end of the test case
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("kneesim_cfg_" + std::to_string(rd()) + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  fs::path write(const std::string& name, const std::string& text) const {
-    std::ofstream(path / name) << text;
-    return path / name;
-  }
-};
+using test::TempDir;  // tests/loads/temp_dir.h
 
 // the message of the InputError thrown by f ("" if none was thrown), with a check that it is
 // one sentence on one line

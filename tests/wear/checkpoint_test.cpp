@@ -4,6 +4,8 @@
 // materials library's bad-input errors (unknown material) from models::load_config.
 #include <doctest/doctest.h>
 
+#include "tests/loads/temp_dir.h"
+
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -20,18 +22,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;  // removed at the end of the test case
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("kneesim_wear_" + std::to_string(rd()) + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
+using test::TempDir;  // tests/loads/temp_dir.h
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

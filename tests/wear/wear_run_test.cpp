@@ -10,6 +10,8 @@
 //    conforming insert stiffens the contact), which the checkpoint must carry.
 #include <doctest/doctest.h>
 
+#include "tests/loads/temp_dir.h"
+
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -30,18 +32,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;  // removed at the end of the test case
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("kneesim_wear_" + std::to_string(rd()) + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
+using test::TempDir;  // tests/loads/temp_dir.h
 
 // the coarse default model (UHMWPE, stanmore rig), built once for the whole executable
 const models::BuiltModel& coarse_model() {

@@ -210,23 +210,8 @@ DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
   // held-out split rule
   bool per_specimen = true;
   for (const auto& [g, s] : specimens) per_specimen = per_specimen && s.size() >= 2;
-  std::map<std::string, std::vector<int>> groups;
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const auto& m = rows[i];
-    groups[per_specimen ? m.group + "/" + m.specimen : m.group].push_back(static_cast<int>(i));
-  }
   c.split_rule = per_specimen ? "leave-one-specimen-out" : "leave-one-load-out";
-  for (const auto& [key, members] : groups) {
-    Fold f;
-    f.name = (per_specimen ? "specimen " : "load ") + key;
-    f.test = members;
-    for (size_t i = 0; i < rows.size(); ++i) {
-      if (std::find(members.begin(), members.end(), static_cast<int>(i)) == members.end()) {
-        f.train.push_back(static_cast<int>(i));
-      }
-    }
-    c.folds.push_back(std::move(f));
-  }
+  c.folds = make_leave_one_out_folds(rows, per_specimen, "load");
 
   // dense curves for plots
   double max_cycles = 0.0;

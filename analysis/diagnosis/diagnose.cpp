@@ -11,6 +11,28 @@
 
 namespace kneesim::diagnosis {
 
+std::vector<Fold> make_leave_one_out_folds(const std::vector<Measurement>& rows, bool per_specimen,
+                                           const std::string& group_word) {
+  std::map<std::string, std::vector<int>> groups;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& m = rows[i];
+    groups[per_specimen ? m.group + "/" + m.specimen : m.group].push_back(static_cast<int>(i));
+  }
+  std::vector<Fold> folds;
+  for (const auto& [key, members] : groups) {
+    Fold f;
+    f.name = (per_specimen ? "specimen " : group_word + " ") + key;
+    f.test = members;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      if (std::find(members.begin(), members.end(), static_cast<int>(i)) == members.end()) {
+        f.train.push_back(static_cast<int>(i));
+      }
+    }
+    folds.push_back(std::move(f));
+  }
+  return folds;
+}
+
 std::vector<ParamSpec> case_effect_params(const DiagnosisCase& c, Effect effect) {
   if (effect == Effect::none) return {};
   return c.effect_params ? c.effect_params(effect) : effect_info(effect).params;

@@ -83,6 +83,11 @@ struct DiagnosisCase {
       curves;
 };
 
+// leave-one-group-out folds: one fold per specimen ("group/specimen") when per_specimen,
+// else one per group; fold names are "specimen <key>" or "<group_word> <key>"
+std::vector<Fold> make_leave_one_out_folds(const std::vector<Measurement>& rows, bool per_specimen,
+                                           const std::string& group_word);
+
 // effect parameter specs of `effect` in case `c` (its override or the library default)
 std::vector<ParamSpec> case_effect_params(const DiagnosisCase& c, Effect effect);
 

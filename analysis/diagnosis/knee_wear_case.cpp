@@ -269,23 +269,8 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
                      "diagnosis needs two conditions or two specimens per condition to hold "
                      "data out.");
   }
-  std::map<std::string, std::vector<int>> groups;
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const auto& m = rows[i];
-    groups[per_specimen ? m.group + "/" + m.specimen : m.group].push_back(static_cast<int>(i));
-  }
   c.split_rule = per_specimen ? "leave-one-specimen-out" : "leave-one-condition-out";
-  for (const auto& [key, members] : groups) {
-    Fold f;
-    f.name = (per_specimen ? "specimen " : "condition ") + key;
-    f.test = members;
-    for (size_t i = 0; i < rows.size(); ++i) {
-      if (std::find(members.begin(), members.end(), static_cast<int>(i)) == members.end()) {
-        f.train.push_back(static_cast<int>(i));
-      }
-    }
-    c.folds.push_back(std::move(f));
-  }
+  c.folds = make_leave_one_out_folds(rows, per_specimen, "condition");
 
   double max_cycles = 0.0;
   for (const auto& m : rows) max_cycles = std::max(max_cycles, m.x);

@@ -3,6 +3,7 @@
 // exponential autocorrelation's 10 % length.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/errors.h"
@@ -57,4 +58,33 @@ TEST_CASE("bad surface input is one clear error") {
                   kneesim::InputError);
   CHECK_THROWS_AS(make_rough_surface(g, SurfaceSpec{1e-7, 2.0, 2.0, 1e-6, 1}, "cfg"),
                   kneesim::InputError);
+  CHECK_THROWS_AS(make_rough_surface(g, SurfaceSpec{1e-7, 0.0, 3.0, 1e-6, 1, -1e-9}, "cfg"),
+                  kneesim::InputError);
+}
+
+// Reference: a band-limited surface is a property of the window, not of the grid (surface.h).
+// On a 2x coarser grid over the same window it must equal the fine grid's surface averaged over
+// the 2 x 2 fine cells around each coarse cell centre, up to the curvature error of that
+// average (about (pi dx / lambda_s)^2 / 2, 2 % of Rq with lambda_s = 16 fine cells). Without
+// the cutoff the coarse grid drops the short wavelengths the fine one carries, so the same
+// comparison must show a large difference.
+TEST_CASE("lambda_s: grids over the same window sample the same surface") {
+  const double window = 12.8e-6, d = window / 128;
+  auto mismatch = [&](double lambda_s) {
+    const SurfaceSpec s{100e-9, 0.0, 3.0, 2e-6, 9, lambda_s};
+    const std::vector<double> fine = make_rough_surface(Grid{128, 128, d, d, true}, s, "t");
+    const std::vector<double> coarse = make_rough_surface(Grid{64, 64, 2 * d, 2 * d, true}, s, "t");
+    double worst = 0.0;
+    for (int i = 0; i < 64; ++i)
+      for (int j = 0; j < 64; ++j) {
+        const double avg = 0.25 * (fine[(2 * i) * 128 + 2 * j] + fine[(2 * i + 1) * 128 + 2 * j] +
+                                   fine[(2 * i) * 128 + 2 * j + 1] + fine[(2 * i + 1) * 128 + 2 * j + 1]);
+        worst = std::max(worst, std::abs(coarse[i * 64 + j] - avg));
+      }
+    return worst / 100e-9;
+  };
+  CHECK(mismatch(16 * d) < 0.05);
+  CHECK(mismatch(0.0) > 0.2);
+  CHECK(lambda_s_transmission(2.0 * M_PI / 0.5e-6, 0.5e-6) == doctest::Approx(0.5).epsilon(1e-12));
+  CHECK(lambda_s_transmission(1e9, 0.0) == 1.0);
 }

@@ -1,8 +1,8 @@
 // Benchmark of the particle BEM (issue 5 targets on this machine, Release):
 //   a 256 x 256 rough contact solve <= 0.5 s, the 256 x 256 x 64 von Mises field <= 2 s;
 // medians of repeated runs, plus the one-off operator set-up, and a grid convergence study
-// 80^2 .. 320^2 over the same physical window (surfaces generated at 320^2 and resampled).
-// Usage: bench_particles [repeats=5] [--no-convergence]
+// 80^2 .. 320^2 over the same physical window (each grid generates the same physical surfaces).
+// Usage: bench_particles [repeats=5] [--no-convergence] [--lambda-s-nm L]
 #include <omp.h>
 
 #include <algorithm>
@@ -47,31 +47,21 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// periodic bilinear resampling of a square n-by-n map to m-by-m over the same window
-std::vector<double> resample(const std::vector<double>& src, int n, int m) {
-  std::vector<double> out(static_cast<long>(m) * m);
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) {
-      const double si = (i + 0.5) * n / m - 0.5, sj = (j + 0.5) * n / m - 0.5;
-      const int i0 = static_cast<int>(std::floor(si)), j0 = static_cast<int>(std::floor(sj));
-      const double a = si - i0, b = sj - j0;
-      auto at = [&](int ii, int jj) { return src[static_cast<long>((ii + n) % n) * n + (jj + n) % n]; };
-      out[static_cast<long>(i) * m + j] = (1 - a) * (1 - b) * at(i0, j0) + a * (1 - b) * at(i0 + 1, j0) +
-                                          (1 - a) * b * at(i0, j0 + 1) + a * b * at(i0 + 1, j0 + 1);
-    }
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 && argv[1][0] != '-' ? std::atoi(argv[1]) : 5;
   bool convergence = true;
-  for (int a = 1; a < argc; ++a) convergence = convergence && std::strcmp(argv[a], "--no-convergence") != 0;
+  double lambda_s = -1.0;  // [m]; < 0: the preset's
+  for (int a = 1; a < argc; ++a) {
+    convergence = convergence && std::strcmp(argv[a], "--no-convergence") != 0;
+    if (std::strcmp(argv[a], "--lambda-s-nm") == 0 && a + 1 < argc) lambda_s = 1e-9 * std::atof(argv[a + 1]);
+  }
   std::printf("threads %d, FFT %s\n", omp_get_max_threads(), Fft2::backend());
 
   // the steel-steel case of the study on a 256 x 256 window (dx = 102 nm), 10 N
   ParticleModelConfig c = make_pair_config(PairName::kSteelSteel);
+  if (lambda_s >= 0.0) c.harder.roughness.lambda_s = c.softer.roughness.lambda_s = lambda_s;
   const double window = 24.48e-6;
   const int n = 256;
   Grid g{n, n, window / n, window / n, true};
@@ -129,15 +119,16 @@ int main(int argc, char** argv) {
   }
   if (!convergence) return 0;
 
-  // grid convergence: same window, surfaces from one 320^2 realisation, the first contact
-  std::printf("\ngrid convergence (steel-steel, 10 N, window %.2f um, first contact, 16 levels refined x4)\n", window * 1e6);
-  std::printf("   n   dx_nm  contact  maxvM_MPa  particles  R_nm  L_nm  W_nm  T_nm  solve_s  field_s\n");
-  Grid fine{320, 320, window / 320, window / 320, true};
-  const std::vector<double> cyl_f = make_rough_surface(fine, c.harder.roughness, "bench");
-  const std::vector<double> disk_f = make_rough_surface(fine, c.softer.roughness, "bench");
+  // grid convergence: the same physical surfaces (same modes, same phases) on every grid over
+  // the same window, the first contact
+  std::printf("\ngrid convergence (steel-steel, 10 N, window %.2f um, lambda_s %.0f / %.0f nm, "
+              "first contact, 16 levels refined x4)\n",
+              window * 1e6, c.harder.roughness.lambda_s * 1e9, c.softer.roughness.lambda_s * 1e9);
+  std::printf("   n   dx_nm  contact  capped  maxvM_MPa  particles  R_nm  L_nm  W_nm  T_nm  solve_s  field_s\n");
   for (int m : {80, 120, 160, 240, 320}) {
     Grid gm{m, m, window / m, window / m, true};
-    const std::vector<double> cm = resample(cyl_f, 320, m), dm = resample(disk_f, 320, m);
+    const std::vector<double> cm = make_rough_surface(gm, c.harder.roughness, "bench");
+    const std::vector<double> dm = make_rough_surface(gm, c.softer.roughness, "bench");
     std::vector<double> hm(gm.size());
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < m; ++j)
@@ -147,18 +138,23 @@ int main(int argc, char** argv) {
     const double ts = seconds_of([&] { rm = solve_contact(op, hm, opt); });
     SubsurfaceStress sm(gm, 0.3);
     sm.set_traction(rm.pressure, c.friction);
-    const int nz = 16;
-    const double dz = 95e-9;
-    std::vector<double> vmm;
-    const double tf = seconds_of([&] { vmm = calc_von_mises_field(sm, nz, dz); });
-    const Detachment d = find_particles(refine_levels(vmm, gm.size(), nz, 4), gm, (nz - 1) * 4,
-                                        dz / 4, c.softer.yield_stress);
-    std::vector<ParticleRecord> recs;
-    for (const Particle& p : d.particles) recs.push_back({1, p});
-    const SizeStats s = calc_size_stats(recs, 1);
-    std::printf("%4d  %6.1f  %7.4f  %9.0f  %9ld  %4.0f  %4.0f  %4.0f  %4.0f  %7.3f  %7.3f\n", m,
-                gm.dx * 1e9, rm.contact_fraction, *std::max_element(vmm.begin(), vmm.end()) / 1e6,
-                s.particles, s.eq_radius * 1e9, s.length * 1e9, s.width * 1e9, s.thickness * 1e9, ts, tf);
+    // the criterion on the standard vertical grid (16 levels of 95 nm refined x4), and with
+    // the levels halved (32 of 47.5 nm) to check the vertical refinement
+    for (int half = 0; half <= (m == 240 ? 1 : 0); ++half) {
+      const int nz = half ? 32 : 16;
+      const double dz = half ? 47.5e-9 : 95e-9;
+      std::vector<double> vmm;
+      const double tf = seconds_of([&] { vmm = calc_von_mises_field(sm, nz, dz); });
+      const Detachment d = find_particles(refine_levels(vmm, gm.size(), nz, 4), gm, (nz - 1) * 4,
+                                          dz / 4, c.softer.yield_stress);
+      std::vector<ParticleRecord> recs;
+      for (const Particle& p : d.particles) recs.push_back({1, p});
+      const SizeStats s = calc_size_stats(recs, 1);
+      std::printf("%4d%s  %6.1f  %7.4f  %6.4f  %9.0f  %9ld  %4.0f  %4.0f  %4.0f  %4.0f  %7.3f  %7.3f\n", m,
+                  half ? "h" : " ", gm.dx * 1e9, rm.contact_fraction, rm.capped_fraction,
+                  *std::max_element(vmm.begin(), vmm.end()) / 1e6, s.particles, s.eq_radius * 1e9,
+                  s.length * 1e9, s.width * 1e9, s.thickness * 1e9, ts, tf);
+    }
   }
   return 0;
 }

@@ -63,6 +63,7 @@ nlohmann::json body_json(const pt::BodySpec& b) {
           {"skewness", b.roughness.skewness},
           {"kurtosis", b.roughness.kurtosis},
           {"correlation_length_nm", b.roughness.correlation_length * 1e9},
+          {"lambda_s_nm", b.roughness.lambda_s * 1e9},
           {"film_thickness_nm", b.elastic.film_thickness * 1e9},
           {"film_E_GPa", b.elastic.film_modulus / 1e9},
           {"surface_csv", b.surface_csv}};
@@ -99,12 +100,14 @@ void run_particles(const ParticlesOptions& o) {
   }
   io::write_csv(dir / "particles.csv", parts);
   io::Table its;
-  its.columns = {"iteration", "particles", "mean_eq_radius_nm", "max_pressure_MPa",
-                 "contact_fraction", "capped_fraction", "cg_iterations", "stress_levels"};
+  its.columns = {"iteration", "particles", "mean_eq_radius_nm", "max_pressure_MPa", "load_N",
+                 "contact_fraction", "capped_fraction", "cg_iterations", "cg_converged",
+                 "stress_levels"};
   for (const pt::IterationRecord& it : r.iterations) {
     its.add_row({double(it.iteration), double(it.particles), it.mean_eq_radius * 1e9,
-                 it.max_pressure / 1e6, it.contact_fraction, it.capped_fraction,
-                 double(it.cg_iterations), double(it.stress_levels)});
+                 it.max_pressure / 1e6, it.load, it.contact_fraction, it.capped_fraction,
+                 double(it.cg_iterations), double(it.contact_converged),
+                 double(it.stress_levels)});
   }
   io::write_csv(dir / "iterations.csv", its);
   io::write_file_atomic(dir / "pressure_map_MPa.csv",

@@ -13,22 +13,31 @@ constexpr double kPi = 3.14159265358979323846;
 // sensitivity in docs/particles.md.
 constexpr double kCorrelationLength = 2.0e-6;
 
+// Short-wavelength cutoff of every surface (ISO 16610-21 Gaussian lambda_s, 50 % transmission).
+// Assumed, the study names no instrument: its converged grid spacing, 102 nm, is taken as the
+// sampling interval of its measured maps, and ISO 3274 pairs lambda_s with a sampling interval
+// of at most lambda_s / 5 (2.5 um with 0.5 um; 8 um with 1.5 um), so lambda_s = 5 x 102 nm =
+// 0.5 um; about the lateral resolution of a 50x white-light interferometer. Without a cutoff
+// the exponential autocorrelation's slopes grow without bound as the grid refines and the
+// particle sizes do not converge (docs/particles.md, grid convergence).
+constexpr double kLambdaS = 0.5e-6;
+
 BodySpec steel_cylinder() {
   return {"steel (cylinder)", ElasticBody{210e9, 0.3}, 6.0e9, 6.0e9 / 2.8,
-          SurfaceSpec{50e-9, -0.27, 8.6, kCorrelationLength, 11}, ""};
+          SurfaceSpec{50e-9, -0.27, 8.6, kCorrelationLength, 11, kLambdaS}, ""};
 }
 
 BodySpec polished_cocr() {
   // CoCrMo (ASTM F75/F1537): E about 210-240 GPa; polished femoral components Ra 0.02-0.05 um,
   // Rq = 1.25 Ra for a Gaussian profile; hardness about 4 GPa (HV 400)
   return {"CoCr (polished)", ElasticBody{230e9, 0.3}, 4.0e9, 4.0e9 / 2.8,
-          SurfaceSpec{1.25 * 0.035e-6, 0.0, 3.0, kCorrelationLength, 11}, ""};
+          SurfaceSpec{1.25 * 0.035e-6, 0.0, 3.0, kCorrelationLength, 11, kLambdaS}, ""};
 }
 
 BodySpec polymer_insert(const char* name, double e, double nu, double yield) {
   // machined insert: Rq 0.5 um Gaussian (assumed); H = 2.8 sigma_y as in the study
   return {name, ElasticBody{e, nu}, 2.8 * yield, yield,
-          SurfaceSpec{0.5e-6, 0.0, 3.0, kCorrelationLength, 23}, ""};
+          SurfaceSpec{0.5e-6, 0.0, 3.0, kCorrelationLength, 23, kLambdaS}, ""};
 }
 
 // knee pairs: the cylinder radius is set so that the Hertz peak pressure equals the mean peak
@@ -80,16 +89,17 @@ ParticleModelConfig make_pair_config(PairName pair) {
     case PairName::kSteelSteel:
       c.harder = steel_cylinder();
       c.softer = {"steel (disk)", ElasticBody{210e9, 0.3}, 1.8e9, 0.64e9,
-                  SurfaceSpec{610e-9, -0.84, 4.46, kCorrelationLength, 23}, ""};
+                  SurfaceSpec{610e-9, -0.84, 4.46, kCorrelationLength, 23, kLambdaS}, ""};
       c.friction = 0.16;
       c.load = 10.0;
       c.sources = "particle-size study (physics.md section 9): cylinder R 2 mm x 6 mm, E, nu, "
-                  "H, sigma_y, Rq, skewness, kurtosis, mu 0.16; correlation length 2 um assumed";
+                  "H, sigma_y, Rq, skewness, kurtosis, mu 0.16; correlation length 2 um and lambda_s 0.5 um (ISO 3274: 5 x the study's 102 nm "
+                  "spacing) assumed";
       break;
     case PairName::kSteelBrass:
       c.harder = steel_cylinder();
       c.softer = {"brass (disk)", ElasticBody{88e9, 0.3}, 2.64e9, 0.94e9,
-                  SurfaceSpec{760e-9, -1.0, 4.94, kCorrelationLength, 23}, ""};
+                  SurfaceSpec{760e-9, -1.0, 4.94, kCorrelationLength, 23, kLambdaS}, ""};
       c.friction = 0.3;
       c.load = 10.0;
       // brass transfer film on the steel cylinder (layered model); 0.5 um assumed
@@ -98,7 +108,7 @@ ParticleModelConfig make_pair_config(PairName pair) {
       c.harder.elastic.film_poisson = 0.3;
       c.sources = "particle-size study (physics.md section 9): brass disk E 88 GPa, H 2.64 GPa, "
                   "sigma_y 0.94 GPa, Rq 760 nm, skewness -1, kurtosis 4.94, mu 0.3; brass transfer "
-                  "film 0.5 um on the cylinder and correlation length 2 um assumed";
+                  "film 0.5 um on the cylinder, correlation length 2 um and lambda_s 0.5 um assumed";
       break;
     case PairName::kUhmwpeCocr:
       c.harder = polished_cocr();
@@ -122,7 +132,8 @@ ParticleModelConfig make_pair_config(PairName pair) {
   if (c.sources.empty()) {
     c.sources = "materials table (physics.md section 6: E, nu, sigma_y, mu); Hertz peak = the "
                 "materials study's mean peak contact pressure; CoCr Ra 0.035 um (physics.md "
-                "section 9: 0.02-0.05); insert Rq 0.5 um and correlation length 2 um assumed; "
+                "section 9: 0.02-0.05); insert Rq 0.5 um, correlation length 2 um and lambda_s "
+                "0.5 um assumed; "
                 "H = 2.8 sigma_y";
   }
   return c;

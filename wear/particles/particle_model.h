@@ -32,6 +32,8 @@ struct IterationRecord {
   int particles = 0;              // detached this iteration [-]
   double mean_eq_radius = 0.0;    // over this iteration's particles [m]
   double max_pressure = 0.0;      // [Pa]
+  double load = 0.0;              // carried by the contact pressure [N]
+  bool contact_converged = false; // contact solver reached its tolerance [-]
   double contact_fraction = 0.0;  // [-]
   double capped_fraction = 0.0;   // share at p = H [-]
   int cg_iterations = 0;          // [-]

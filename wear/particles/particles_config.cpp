@@ -55,6 +55,7 @@ void read_body(const Reader& r, const std::string& s, BodySpec& b) {
   b.roughness.kurtosis = r.number(s, "kurtosis", b.roughness.kurtosis, 1.0, 50);
   b.roughness.correlation_length =
       1e-9 * r.number(s, "correlation_length_nm", b.roughness.correlation_length * 1e9, 1e-3, kBig);
+  b.roughness.lambda_s = 1e-9 * r.number(s, "lambda_s_nm", b.roughness.lambda_s * 1e9, 0.0, 1e9);
   b.roughness.seed = static_cast<std::uint64_t>(r.number(s, "seed", double(b.roughness.seed), 0, 1e15));
   b.elastic.film_thickness =
       1e-9 * r.number(s, "film_thickness_nm", b.elastic.film_thickness * 1e9, 0.0, 1e6);

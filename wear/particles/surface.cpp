@@ -13,19 +13,24 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// standard normal samples by Box-Muller on a 64-bit Mersenne twister (portable, seeded)
-std::vector<double> white_noise(long n, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::vector<double> out(n);
-  const double scale = 1.0 / 18446744073709551616.0;  // 2^-64
-  for (long k = 0; k < n; k += 2) {
-    const double u1 = (static_cast<double>(rng()) + 0.5) * scale;
-    const double u2 = (static_cast<double>(rng()) + 0.5) * scale;
-    const double r = std::sqrt(-2.0 * std::log(u1));
-    out[k] = r * std::cos(2.0 * kPi * u2);
-    if (k + 1 < n) out[k + 1] = r * std::sin(2.0 * kPi * u2);
-  }
-  return out;
+// SplitMix64 finaliser (Steele, Lea & Flood 2014): a portable, well-mixed 64-bit hash
+std::uint64_t mix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+// complex standard normal deviate of the window's Fourier mode (m, n), n >= 0, from the seed
+// alone (Box-Muller on two hashed uniforms), so every grid draws the same value for a mode
+Complex mode_noise(std::uint64_t seed, long m, long n) {
+  const std::uint64_t key = mix64(seed ^ mix64(static_cast<std::uint64_t>(m) * 0xd1b54a32d192ed03ULL ^
+                                               mix64(static_cast<std::uint64_t>(n))));
+  const double scale = 1.0 / 9007199254740992.0;  // 2^-53
+  const double u1 = (static_cast<double>(mix64(key) >> 11) + 0.5) * scale;
+  const double u2 = (static_cast<double>(mix64(key + 1) >> 11) + 0.5) * scale;
+  const double r = std::sqrt(-2.0 * std::log(u1));
+  return {r * std::cos(2.0 * kPi * u2), r * std::sin(2.0 * kPi * u2)};
 }
 
 Eigen::Vector3d fleishman_residual(const Eigen::Vector3d& v, double g1, double g2) {
@@ -74,6 +79,11 @@ bool solve_fleishman(double skewness, double kurtosis, double& b, double& c, dou
   return false;
 }
 
+double lambda_s_transmission(double q, double lambda_s) {
+  const double w = lambda_s * q / (2.0 * kPi);
+  return std::exp(-std::log(2.0) * w * w);
+}
+
 SurfaceStats calc_surface_stats(const std::vector<double>& h) {
   SurfaceStats s;
   const double n = static_cast<double>(h.size());
@@ -103,31 +113,43 @@ std::vector<double> make_rough_surface(const Grid& grid, const SurfaceSpec& spec
                   source.c_str(), spec.rq * 1e9, spec.correlation_length * 1e9);
     throw InputError(buf);
   }
+  if (!(spec.lambda_s >= 0.0)) {
+    std::snprintf(buf, sizeof buf, "%s: lambda_s = %g nm is not allowed; it must be >= 0",
+                  source.c_str(), spec.lambda_s * 1e9);
+    throw InputError(buf);
+  }
   const int nx = grid.nx, ny = grid.ny;
   const long n = grid.size();
   Fft2 fft(nx, ny);
   const int nc = fft.nyc();
 
-  // filter: square root of the power spectrum of the exponential autocorrelation
-  std::vector<double> acf(n);
-  for (int i = 0; i < nx; ++i) {
-    const double tx = (i <= nx / 2 ? i : i - nx) * grid.dx;
-    for (int j = 0; j < ny; ++j) {
-      const double ty = (j <= ny / 2 ? j : j - ny) * grid.dy;
-      acf[static_cast<long>(i) * ny + j] =
-          std::exp(-2.3 * std::hypot(tx, ty) / spec.correlation_length);
+  // spectrum: per-mode noise times the square root of the exponential autocorrelation's power
+  // spectrum, (1 + (q l)^2)^(-3/2) with l = beta / 2.3, times the lambda_s filter; modes at or
+  // beyond a grid's Nyquist index are left out, so a coarser grid holds a subset of the modes
+  const double ell = spec.correlation_length / 2.3;
+  std::vector<Complex> spectrum(static_cast<long>(nx) * nc, Complex(0.0, 0.0));
+  for (int ix = 0; ix < nx; ++ix) {
+    const long m = ix <= nx / 2 ? ix : ix - nx;
+    if (2 * std::abs(m) >= nx) continue;
+    const double qx = 2.0 * kPi * m / (nx * grid.dx);
+    for (int iy = 0; iy < nc; ++iy) {
+      const long mn = iy;
+      if (2 * mn >= ny || (mn == 0 && m == 0)) continue;  // Nyquist column, mean
+      const double qy = 2.0 * kPi * mn / (ny * grid.dy);
+      const double q = std::hypot(qx, qy);
+      const double amp = std::pow(1.0 + q * q * ell * ell, -0.75) *
+                         lambda_s_transmission(q, spec.lambda_s);
+      // column n = 0 holds both m and -m: one draw, conjugated, keeps the field real
+      const Complex xi = (mn == 0 && m < 0) ? std::conj(mode_noise(spec.seed, -m, 0))
+                                            : mode_noise(spec.seed, m, mn);
+      // phase of the grid's first cell centre, so that every grid samples the same
+      // continuous surface at its own cell centres x_i = (i - (nx - 1) / 2) dx
+      const double phase = qx * grid.x(0) + qy * grid.y(0);
+      spectrum[static_cast<long>(ix) * nc + iy] = amp * xi * Complex(std::cos(phase), std::sin(phase));
     }
   }
-  std::vector<Complex> filt(static_cast<long>(nx) * nc), noise_hat(filt.size());
-  fft.forward(acf.data(), filt.data(), nx);
-  std::vector<double> noise = white_noise(n, spec.seed);
-  fft.forward(noise.data(), noise_hat.data(), nx);
-  for (std::size_t k = 0; k < filt.size(); ++k) {
-    noise_hat[k] *= std::sqrt(std::max(filt[k].real(), 0.0));
-  }
-  noise_hat[0] = 0.0;  // zero mean
   std::vector<double> z(n);
-  fft.inverse(noise_hat.data(), z.data(), nx);
+  fft.inverse(spectrum.data(), z.data(), nx);
 
   // standardise
   SurfaceStats st = calc_surface_stats(z);

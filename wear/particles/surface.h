@@ -4,6 +4,22 @@
 // Generation follows Hu & Tonder (1992): white noise filtered in the frequency domain by the
 // square root of the power spectrum of an exponential autocorrelation
 // R(tx, ty) = Rq^2 exp(-2.3 sqrt((tx/bx)^2 + (ty/by)^2)) (bx, by: lengths where R falls to 10 %).
+//
+// The surface is a property of the physical window, not of the grid: the white noise is drawn
+// per Fourier mode (m, n) of the window from a counter-based generator keyed by (seed, m, n),
+// and a grid keeps the modes below its Nyquist wavenumber. Two grids over the same window thus
+// carry the same random phases on the same physical wavenumbers; a coarser grid's Gaussian
+// field is the exact spectral truncation of a finer one's. Rejected: white noise per grid
+// point (every grid size gives another surface) and bilinear point resampling of one fine
+// surface (aliases the short wavelengths onto the coarse grid).
+//
+// The exponential autocorrelation is not differentiable at the origin: its spectrum falls as
+// q^-3 and the rms slope grows without bound as the grid refines, so contact spots and the
+// stress fields under them never converge. A measured Rq is however band-limited by the
+// instrument: ISO 3274 / ISO 16610-21 apply a Gaussian short-wavelength filter lambda_s
+// (amplitude transmission exp(-ln 2 (lambda_s / lambda)^2), 50 % at lambda = lambda_s).
+// With lambda_s > 0 the same filter is applied to the generated spectrum, and the Rq,
+// skewness and kurtosis targets are those of the filtered surface, as measured.
 // Skewness and kurtosis are then imposed by a rank-preserving Fleishman power transform
 // Y = -c + bZ + cZ^2 + dZ^3 of the filtered Gaussian field, whose targets are corrected until
 // the sample moments match. Rejected: Hu & Tonder's Johnson translator applied to the noise
@@ -25,6 +41,7 @@ struct SurfaceSpec {
   double kurtosis = 3.0;           // [-] (3 = Gaussian)
   double correlation_length = 0.0; // 10 % autocorrelation length, both directions [m]
   std::uint64_t seed = 1;          // random seed [-]
+  double lambda_s = 0.0;           // short-wavelength cutoff (ISO Gaussian, 50 %); 0 = none [m]
 };
 
 struct SurfaceStats {
@@ -34,9 +51,10 @@ struct SurfaceStats {
   double kurtosis = 0.0;  // [-]
 };
 
-// heights (grid.size(), [m], zero mean) of a surface periodic in both directions; throws
-// InputError naming `source` for Rq or correlation length <= 0 or moments that no Fleishman
-// transform reaches (kurtosis below 1 + skewness^2 or far beyond it)
+// heights (grid.size(), [m], zero mean) of a surface periodic in both directions over the
+// window nx dx by ny dy; throws InputError naming `source` for Rq or correlation length <= 0,
+// lambda_s < 0, or moments that no Fleishman transform reaches (kurtosis below
+// 1 + skewness^2 or far beyond it)
 std::vector<double> make_rough_surface(const Grid& grid, const SurfaceSpec& spec,
                                        const std::string& source);
 
@@ -45,5 +63,9 @@ SurfaceStats calc_surface_stats(const std::vector<double>& heights);
 // coefficients (b, c, d) of the Fleishman transform for a target skewness and kurtosis;
 // returns false when Newton's method finds none
 bool solve_fleishman(double skewness, double kurtosis, double& b, double& c, double& d);
+
+// amplitude transmission of the ISO 16610-21 Gaussian low-pass with cutoff lambda_s [m] at
+// wavenumber q [rad/m]: exp(-ln 2 (lambda_s q / 2 pi)^2); 1 when lambda_s = 0
+double lambda_s_transmission(double q, double lambda_s);
 
 }  // namespace kneesim::particles

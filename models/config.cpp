@@ -1,72 +1,35 @@
-// The TOML adapter (design.md: toml++ lives only here). Keys are registered once with their
-// type and range; the file and the --set overrides are flattened to dotted keys and assigned
-// through the registry, so every error names file, key, value and the allowed range.
+// Config loading: keys are registered once with their type and range; the file (read through
+// the toml++ adapter, tools/io/toml_file.h) and the --set overrides are flattened to dotted keys
+// and assigned through the registry, so every error names file, line, key, value and the allowed
+// range.
 #include "models/config.h"
 
 #include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <sstream>
-#include <toml++/toml.h>
 #include <variant>
 
 #include "engine/errors.h"
+#include "tools/io/toml_file.h"
 
 namespace kneesim::models {
 namespace {
 
-using Value = std::variant<double, std::string, bool, std::vector<double>>;
+using Value = io::TomlValue;
+using io::describe;
 
 struct Entry {
   Value value;
-  std::string origin;  // file name or "--set"
+  std::string origin;  // "file:line" or "--set key=value"
 };
 
-std::string describe(const Value& v) {
-  if (auto d = std::get_if<double>(&v)) {
-    std::ostringstream s;
-    s << *d;
-    return s.str();
+std::map<std::string, Entry> with_origins(const io::TomlDocument& doc, const std::string& file) {
+  std::map<std::string, Entry> out;
+  for (const auto& [key, e] : doc) {
+    out[key] = {e.value, e.line > 0 ? file + ":" + std::to_string(e.line) : file};
   }
-  if (auto str = std::get_if<std::string>(&v)) return "\"" + *str + "\"";
-  if (auto b = std::get_if<bool>(&v)) return *b ? "true" : "false";
-  const auto& list = std::get<std::vector<double>>(v);
-  std::string out = "[";
-  for (size_t i = 0; i < list.size(); ++i) {
-    std::ostringstream s;
-    s << list[i];
-    out += (i ? ", " : "") + s.str();
-  }
-  return out + "]";
-}
-
-// flattens a TOML table into dotted keys; arrays of numbers become lists
-void flatten(const toml::table& table, const std::string& prefix, const std::string& origin,
-             std::map<std::string, Entry>& out) {
-  for (const auto& [k, node] : table) {
-    const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
-    if (const auto* sub = node.as_table()) {
-      flatten(*sub, key, origin, out);
-    } else if (const auto* arr = node.as_array()) {
-      std::vector<double> list;
-      for (const auto& item : *arr) {
-        if (auto d = item.value<double>()) {
-          list.push_back(*d);
-        } else {
-          throw InputError(origin + ": key '" + key + "' must be a list of numbers");
-        }
-      }
-      out[key] = {list, origin};
-    } else if (auto b = node.value_exact<bool>()) {
-      out[key] = {*b, origin};
-    } else if (auto d = node.value<double>()) {
-      out[key] = {*d, origin};
-    } else if (auto s = node.value<std::string>()) {
-      out[key] = {*s, origin};
-    } else {
-      throw InputError(origin + ": key '" + key + "' has a value of an unsupported type");
-    }
-  }
+  return out;
 }
 
 // one registered key: how to assign it and what is allowed
@@ -317,32 +280,32 @@ std::string materials_library_path() {
   return std::string(KNEESIM_SOURCE_DIR) + "/models/materials.toml";
 }
 
-std::map<std::string, MaterialConfig> read_material_tables(const toml::table& root,
-                                                           const std::string& origin,
+// materials are tables of their own: "<section>.<name>.<key>" entries, removed from `flat`
+std::map<std::string, MaterialConfig> take_material_tables(std::map<std::string, Entry>& flat,
                                                            const std::string& section) {
   std::map<std::string, MaterialConfig> out;
-  const toml::table* mats = section.empty() ? &root : root[section].as_table();
-  if (!mats) return out;
-  for (const auto& [name, node] : *mats) {
-    const toml::table* t = node.as_table();
-    if (!t) throw InputError(origin + ": '" + std::string(name.str()) + "' must be a table");
-    MaterialConfig m;
-    m.name = std::string(name.str());
-    Registry r;
-    register_material(r, "", m);
-    std::map<std::string, Entry> flat;
-    flatten(*t, "", origin, flat);
-    for (const auto& [k, e] : flat) {
-      const Field* f = r.find(k);
-      const std::string full = (section.empty() ? "" : section + ".") + m.name + "." + k;
-      if (!f) {
-        throw InputError(origin + ": unknown key '" + full + "' (allowed: elastic_modulus_MPa, "
-                         "poisson, yield_MPa, density_g_per_cm3, friction, "
-                         "wear_factor_mm3_per_Nmm, source)");
-      }
-      f->assign(e.value, origin + " [" + full + "]");
+  const std::string prefix = section.empty() ? "" : section + ".";
+  for (auto it = flat.lower_bound(prefix); it != flat.end() && it->first.starts_with(prefix);) {
+    const std::string rest = it->first.substr(prefix.size());
+    const auto dot = rest.find('.');
+    if (dot == std::string::npos) {
+      throw InputError(it->second.origin + ": '" + it->first + "' must be a table of material "
+                       "properties");
     }
-    out[m.name] = m;
+    const std::string name = rest.substr(0, dot);
+    const std::string key = rest.substr(dot + 1);
+    auto [mat, fresh] = out.try_emplace(name);
+    if (fresh) mat->second.name = name;
+    Registry r;
+    register_material(r, "", mat->second);
+    const Field* f = r.find(key);
+    if (!f) {
+      throw InputError(it->second.origin + ": unknown key '" + it->first + "' (allowed: "
+                       "elastic_modulus_MPa, poisson, yield_MPa, density_g_per_cm3, friction, "
+                       "wear_factor_mm3_per_Nmm, source)");
+    }
+    f->assign(it->second.value, it->second.origin + " [" + it->first + "]");
+    it = flat.erase(it);
   }
   return out;
 }
@@ -350,39 +313,32 @@ std::map<std::string, MaterialConfig> read_material_tables(const toml::table& ro
 const std::map<std::string, MaterialConfig>& library() {
   static const std::map<std::string, MaterialConfig> lib = [] {
     const std::string path = materials_library_path();
-    toml::table root;
-    try {
-      root = toml::parse_file(path);
-    } catch (const toml::parse_error& e) {
-      throw InputError(path + ": " + std::string(e.description()));
-    }
-    return read_material_tables(root, path, "");
+    auto flat = with_origins(io::read_toml_file(path), path);
+    return take_material_tables(flat, "");
   }();
   return lib;
 }
 
-std::map<std::string, std::vector<std::string>> read_conditions(const toml::table& root,
-                                                               const std::string& origin) {
+// [conditions.<name>] set = ["key=value", ...]; the entries are removed from `flat`
+std::map<std::string, std::vector<std::string>> take_conditions(std::map<std::string, Entry>& flat) {
   std::map<std::string, std::vector<std::string>> out;
-  const toml::table* conds = root["conditions"].as_table();
-  if (!conds) return out;
-  for (const auto& [name, node] : *conds) {
-    const std::string key = "conditions." + std::string(name.str());
-    const toml::table* t = node.as_table();
-    const toml::array* set = t ? (*t)["set"].as_array() : nullptr;
-    if (!t || !set || t->size() != 1) {
-      throw InputError(origin + ": [" + key + "] must hold exactly one key, set = [\"key=value\""
-                       ", ...]");
+  const std::string prefix = "conditions.";
+  for (auto it = flat.lower_bound(prefix); it != flat.end() && it->first.starts_with(prefix);) {
+    const std::string rest = it->first.substr(prefix.size());
+    const auto dot = rest.find('.');
+    const auto* set = std::get_if<std::vector<std::string>>(&it->second.value);
+    if (dot == std::string::npos || rest.substr(dot + 1) != "set" || !set) {
+      throw InputError(it->second.origin + ": [conditions.<name>] must hold exactly one key, "
+                       "set = [\"key=value\", ...] (found '" + it->first + "')");
     }
-    std::vector<std::string> overrides;
-    for (const auto& item : *set) {
-      auto text = item.value<std::string>();
-      if (!text || text->find('=') == std::string::npos) {
-        throw InputError(origin + ": " + key + ".set entries must be strings \"key=value\"");
+    for (const auto& text : *set) {
+      if (text.find('=') == std::string::npos) {
+        throw InputError(it->second.origin + ": " + it->first + " entry \"" + text +
+                         "\" is not of the form \"key=value\"");
       }
-      overrides.push_back(*text);
     }
-    out[std::string(name.str())] = overrides;
+    out[rest.substr(0, dot)] = *set;
+    it = flat.erase(it);
   }
   return out;
 }
@@ -434,34 +390,17 @@ Config load_config(const std::filesystem::path& file, const std::vector<Override
   Config c;
   c.file = file;
   std::map<std::string, Entry> flat;
-  toml::table root;
   if (!file.empty()) {
     if (!std::filesystem::exists(file)) {
       throw InputError(file.string() + ": config file not found");
     }
-    try {
-      root = toml::parse_file(file.string());
-    } catch (const toml::parse_error& e) {
-      throw InputError(file.string() + ":" + std::to_string(e.source().begin.line) + ": " +
-                       std::string(e.description()));
-    }
-    // user materials are tables of their own, read before the flat keys
-    c.user_materials = read_material_tables(root, file.string(), "materials");
-    root.erase("materials");
-    c.conditions = read_conditions(root, file.string());
-    root.erase("conditions");
-    flatten(root, "", file.string(), flat);
+    flat = with_origins(io::read_toml_file(file), file.string());
+    // user materials and named conditions are tables of their own, taken before the flat keys
+    c.user_materials = take_material_tables(flat, "materials");
+    c.conditions = take_conditions(flat);
   }
   for (const Override& o : overrides) {
-    toml::table t;
-    try {
-      t = toml::parse("v = " + o.value);
-    } catch (const toml::parse_error&) {
-      t = toml::table{{"v", o.value}};  // a bare word is a string
-    }
-    std::map<std::string, Entry> one;
-    flatten(t, "", "--set " + o.key, one);
-    flat[o.key] = {one.begin()->second.value, "--set " + o.key + "=" + o.value};
+    flat[o.key] = {io::parse_toml_value(o.value), "--set " + o.key + "=" + o.value};
   }
   Registry registry = make_registry(c);
   // pass 1: the preset and the material name set the defaults the other keys refine

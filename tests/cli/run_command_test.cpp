@@ -6,101 +6,17 @@
 // line on stderr and leaves no summary.json.
 #include <doctest/doctest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "tests/cli_wear/cli_helpers.h"  // find_kneesim, run_kneesim, TempDir, slurp, split
+
 namespace fs = std::filesystem;
-
-namespace {
-
-// the kneesim executable: the nearest ancestor of this test binary holding tools/kneesim
-fs::path find_kneesim() {
-  const fs::path self = fs::read_symlink("/proc/self/exe");
-  for (fs::path dir = self.parent_path(); !dir.empty() && dir != dir.root_path();
-       dir = dir.parent_path()) {
-    const fs::path candidate = dir / "tools" / "kneesim";
-    if (fs::is_regular_file(candidate) && ::access(candidate.c_str(), X_OK) == 0) return candidate;
-  }
-  return {};
-}
-
-struct TempDir {
-  fs::path path;  // removed at the end of the test case
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("kneesim_cli_" + std::to_string(rd()) + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct Result {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-// runs kneesim with the arguments, stdout and stderr captured into files of `dir`
-Result run_kneesim(const std::vector<std::string>& args, const fs::path& dir) {
-  const fs::path exe = find_kneesim();
-  REQUIRE_MESSAGE(!exe.empty(),
-                  "kneesim executable not found above " << fs::read_symlink("/proc/self/exe"));
-  std::string cmd = quote(exe.string());
-  for (const auto& a : args) {
-    cmd += ' ';
-    cmd += quote(a);
-  }
-  cmd += " >";
-  cmd += quote((dir / "stdout.txt").string());
-  cmd += " 2>";
-  cmd += quote((dir / "stderr.txt").string());
-  const int status = std::system(cmd.c_str());
-  Result r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(dir / "stdout.txt");
-  r.err = slurp(dir / "stderr.txt");
-  return r;
-}
-
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  for (std::string cell; std::getline(ss, cell, sep);) out.push_back(cell);
-  return out;
-}
-
-int count_lines(const std::string& text) {
-  int n = 0;
-  for (char c : text) n += c == '\n';
-  return n;
-}
-
-}  // namespace
+using namespace kneesim::test;
 
 TEST_CASE("kneesim run writes the complete result set") {
   TempDir tmp;

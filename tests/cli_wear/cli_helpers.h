@@ -1,6 +1,7 @@
 // Running the built `kneesim` program from the CLI tests: found in the build tree above the
 // test binary (<build>/tools/kneesim), run to completion with std::system, or started in the
-// background (fork/exec) so that a test can SIGKILL it at a chosen moment.
+// background (fork/exec) so that a test can SIGKILL it at a chosen moment. Shared by
+// tests/cli (kneesim run) and tests/cli_wear (wear, compare).
 #pragma once
 
 #include <signal.h>
@@ -11,11 +12,12 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "tests/loads/temp_dir.h"  // TempDir
 
 namespace kneesim::test {
 
@@ -31,20 +33,6 @@ inline fs::path find_kneesim() {
   }
   return {};
 }
-
-struct TempDir {
-  fs::path path;  // removed at the end of the test case
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() /
-           ("kneesim_cli_wear_" + std::to_string(rd()) + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
 
 inline std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

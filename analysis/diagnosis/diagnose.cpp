@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -40,21 +41,49 @@ std::vector<ParamSpec> case_effect_params(const DiagnosisCase& c, Effect effect)
 
 namespace {
 
-// The measurements with their specimen structure. Specimens of one material scatter in wear
-// factor (multiplicatively), so the residuals of one specimen are correlated; when specimens
-// are given, every model is fitted with a specimen random effect: y_s = f_s + u_s g_s + e,
-// u_s ~ N(0, tau^2), g_s = weighted derivative of the specimen's baseline curve with respect
-// to ln k. Its covariance sigma^2 I + tau^2 g g^T is whitened exactly (rank-one update).
-// Without it, AICc treats the 4-8 correlated points of a specimen as independent and mistakes
-// specimen scatter between loads for a pressure effect.
+// The measurements with their noise and specimen structure.
+//
+// Noise: one variance per measured quantity, profiled with every fit: sigma_q = sigma /
+// lambda_q in the first quantity's unit (lambda = 1 for the first quantity). Residuals are
+// weighted by w_i = unit_i lambda_q(i), where unit_i converts quantity q into the first
+// quantity's unit by the ratio of the measured RMS values; the conversion only sets the unit
+// the RMSEs are printed in (the likelihood does not depend on it), lambda_q is what the data
+// say about the relative precision. Why: volume and depth (AP and IE) are measured with
+// different instruments and relative precisions; with one pooled variance the noisier quantity
+// is over-weighted, and an effect that changes only that quantity (creep: depth) gains
+// likelihood by fitting its noise (about 1 clean block-on-ring set in 750 was named `creep`
+// that way).
+//
+// Specimens: specimens of one material scatter in wear factor (multiplicatively), so the
+// residuals of one specimen are correlated; when specimens are given, every model is fitted
+// with a specimen random effect: y_s = f_s + u_s dg_s + e, u_s ~ N(0, tau^2), dg_s = derivative
+// of the specimen's baseline curve with respect to ln k. In weighted residuals its covariance
+// is sigma^2 (I + rho g g^T), g = w dg, rho = tau^2 / sigma^2, whitened exactly (rank-one
+// update). Without it, AICc treats the 4-8 correlated points of a specimen as independent and
+// mistakes specimen scatter between loads for a pressure effect.
 struct Problem {
   const DiagnosisCase& c;
   Eigen::VectorXd y;                       // measured values
-  Eigen::VectorXd weights;                 // per measurement
+  Eigen::VectorXd unit;                    // quantity -> first quantity's unit, per row
+  std::vector<int> quantity;               // quantity index per row
+  std::vector<std::string> quantity_names; // first = the RMSE unit
   std::vector<std::vector<int>> clusters;  // specimens (rows), or one row each
-  Eigen::VectorXd g;                       // random-effect direction per row (weighted)
+  Eigen::VectorXd dg;                      // random-effect direction per row (unweighted)
   bool random_effect = false;              // specimens given: fit tau too
+  int quantities() const { return static_cast<int>(quantity_names.size()); }
 };
+
+// a fit's noise model: precision ratio per quantity and the specimen variance ratio
+struct Noise {
+  Eigen::VectorXd lambda;  // per quantity [-], lambda[0] = 1
+  double rho = 0.0;        // tau^2 / sigma^2 in weighted units [-]
+};
+
+Eigen::VectorXd row_weights(const Problem& pb, const Eigen::VectorXd& lambda) {
+  Eigen::VectorXd w = pb.unit;
+  for (Eigen::Index i = 0; i < w.size(); ++i) w[i] *= lambda[pb.quantity[static_cast<size_t>(i)]];
+  return w;
+}
 
 Eigen::VectorXd initial_of(const std::vector<ParamSpec>& specs, const Eigen::VectorXd& baseline) {
   Eigen::VectorXd p(static_cast<Eigen::Index>(specs.size()));
@@ -78,22 +107,26 @@ std::vector<int> flatten(const std::vector<std::vector<int>>& clusters) {
   return rows;
 }
 
-// whitened residuals of `clusters` (rows may repeat across clusters: bootstrap draws) at
-// variance ratio rho = tau^2 / sigma^2, with measured values y
+// whitened residuals of `clusters` (rows may repeat across clusters: bootstrap draws) with
+// row weights w and variance ratio rho, for measured values y
 Eigen::VectorXd whitened(const Problem& pb, const Eigen::VectorXd& y, Effect e,
                          const Eigen::VectorXd& params,
-                         const std::vector<std::vector<int>>& clusters, double rho) {
+                         const std::vector<std::vector<int>>& clusters, double rho,
+                         const Eigen::VectorXd& w) {
   const auto rows = flatten(clusters);
   Eigen::VectorXd r = predict(pb, e, params, rows);
   for (size_t i = 0; i < rows.size(); ++i) {
-    r[static_cast<Eigen::Index>(i)] = (r[static_cast<Eigen::Index>(i)] - y[rows[i]]) * pb.weights[rows[i]];
+    r[static_cast<Eigen::Index>(i)] = (r[static_cast<Eigen::Index>(i)] - y[rows[i]]) * w[rows[i]];
   }
   if (rho <= 0.0) return r;
   Eigen::Index at = 0;
   for (const auto& cl : clusters) {
     const auto n = static_cast<Eigen::Index>(cl.size());
     Eigen::VectorXd gs(n);
-    for (Eigen::Index i = 0; i < n; ++i) gs[i] = pb.g[cl[static_cast<size_t>(i)]];
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const int row = cl[static_cast<size_t>(i)];
+      gs[i] = pb.dg[row] * w[row];
+    }
     const double g2 = gs.squaredNorm();
     if (g2 > 0.0) {
       const double c = 1.0 - 1.0 / std::sqrt(1.0 + rho * g2);
@@ -106,26 +139,33 @@ Eigen::VectorXd whitened(const Problem& pb, const Eigen::VectorXd& y, Effect e,
   return r;
 }
 
-double log_det(const Problem& pb, const std::vector<std::vector<int>>& clusters, double rho) {
+double cluster_g2(const Problem& pb, const std::vector<int>& cl, const Eigen::VectorXd& w) {
+  double g2 = 0.0;
+  for (int i : cl) g2 += pb.dg[i] * w[i] * pb.dg[i] * w[i];
+  return g2;
+}
+
+double log_det(const Problem& pb, const std::vector<std::vector<int>>& clusters, double rho,
+               const Eigen::VectorXd& w) {
   double ld = 0.0;
-  for (const auto& cl : clusters) {
-    double g2 = 0.0;
-    for (int i : cl) g2 += pb.g[i] * pb.g[i];
-    ld += std::log1p(rho * g2);
-  }
+  for (const auto& cl : clusters) ld += std::log1p(rho * cluster_g2(pb, cl, w));
   return ld;
 }
 
 FitResult fit_clusters(const Problem& pb, const Eigen::VectorXd& y, Effect e,
                        const std::vector<ParamSpec>& specs, const Eigen::VectorXd& start,
-                       const std::vector<std::vector<int>>& clusters, double rho, bool multi) {
-  auto residuals = [&](const Eigen::VectorXd& p) { return whitened(pb, y, e, p, clusters, rho); };
+                       const std::vector<std::vector<int>>& clusters, const Noise& noise,
+                       bool multi) {
+  const Eigen::VectorXd w = row_weights(pb, noise.lambda);
+  auto residuals = [&](const Eigen::VectorXd& p) {
+    return whitened(pb, y, e, p, clusters, noise.rho, w);
+  };
   return fit_least_squares(residuals, specs, start, multi, pb.c.fit_control);
 }
 
 // clusters restricted to `rows`
 std::vector<std::vector<int>> clusters_of(const Problem& pb, const std::vector<int>& rows) {
-  std::vector<char> in(pb.y.size(), 0);
+  std::vector<char> in(static_cast<size_t>(pb.y.size()), 0);
   for (int i : rows) in[static_cast<size_t>(i)] = 1;
   std::vector<std::vector<int>> out;
   for (const auto& cl : pb.clusters) {
@@ -138,9 +178,28 @@ std::vector<std::vector<int>> clusters_of(const Problem& pb, const std::vector<i
   return out;
 }
 
-double weighted_rmse(const Problem& pb, const Eigen::VectorXd& pred) {
-  return std::sqrt((pred - pb.y).cwiseProduct(pb.weights).squaredNorm() /
-                   static_cast<double>(pb.y.size()));
+// One number for a model's errors: the count-weighted geometric mean of the per-quantity RMSEs,
+// each in the first quantity's unit. It is the Gaussian likelihood with one variance per
+// quantity, profiled (-2 log L / n = sum_q (n_q / n) ln RMSE_q^2 + const), the noise model of
+// the fits; so ratios between models (the gain, the held-out threshold) do not depend on the
+// unit conversion, and a quantity with a larger spread does not dominate. For one quantity it
+// is the plain RMSE.
+double score(const Problem& pb, const Eigen::VectorXd& pred) {
+  std::vector<double> ss(static_cast<size_t>(pb.quantities()), 0.0);
+  std::vector<double> count(ss.size(), 0.0);
+  for (Eigen::Index i = 0; i < pred.size(); ++i) {
+    const size_t q = static_cast<size_t>(pb.quantity[static_cast<size_t>(i)]);
+    const double d = (pred[i] - pb.y[i]) * pb.unit[i];
+    ss[q] += d * d;
+    count[q] += 1.0;
+  }
+  double log_sum = 0.0, n = 0.0;
+  for (size_t q = 0; q < ss.size(); ++q) {
+    if (count[q] == 0.0) continue;
+    log_sum += 0.5 * count[q] * std::log(std::max(ss[q] / count[q], 1e-300));
+    n += count[q];
+  }
+  return std::exp(log_sum / n);
 }
 
 std::vector<int> all_rows(size_t n) {
@@ -149,18 +208,59 @@ std::vector<int> all_rows(size_t n) {
   return rows;
 }
 
-// -2 log L (profiled over sigma) plus the AICc penalty; k counts sigma and tau too
-double aicc(double rss_white, double log_det_sum, int n, int k) {
-  return n * std::log(std::max(rss_white, 1e-300) / n) + log_det_sum + 2.0 * k +
-         2.0 * k * (k + 1.0) / (n - k - 1.0);
+// -2 log L (profiled over sigma) plus the AICc penalty; log_lambda_sum = sum over rows of
+// ln lambda_q (the Jacobian of the per-quantity scaling); k counts the variances and tau too
+double aicc(double rss_white, double log_det_sum, double log_lambda_sum, int n, int k) {
+  return n * std::log(std::max(rss_white, 1e-300) / n) + log_det_sum - 2.0 * log_lambda_sum +
+         2.0 * k + 2.0 * k * (k + 1.0) / (n - k - 1.0);
+}
+
+double log_lambda_sum(const Problem& pb, const Eigen::VectorXd& lambda) {
+  double s = 0.0;
+  for (int q : pb.quantity) s += std::log(lambda[q]);
+  return s;
 }
 
 // variance ratios tried for the specimen random effect, relative to the mean |g_s|^2
 constexpr double kRhoGrid[] = {0.0,  0.05, 0.1,   0.2,   0.5,   1.0,   2.0,    5.0,   10.0,
                                20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0, 5000.0};
 
+// alternations between the fit and the per-quantity variances (converged when no precision
+// ratio moves by more than 1 %; two or three suffice in the tests)
+constexpr int kNoiseIterations = 5;
+
+// per-quantity precision ratios from the residuals of a fit, with each specimen's random
+// effect (its best linear unbiased prediction) removed
+Eigen::VectorXd precision_ratios(const Problem& pb, const Eigen::VectorXd& pred,
+                                 const Noise& noise) {
+  const Eigen::VectorXd w = row_weights(pb, noise.lambda);
+  Eigen::VectorXd resid = pb.y - pred;
+  if (noise.rho > 0.0) {
+    for (const auto& cl : pb.clusters) {
+      double gz = 0.0;
+      for (int i : cl) gz += pb.dg[i] * w[i] * resid[i] * w[i];
+      const double u = noise.rho * gz / (1.0 + noise.rho * cluster_g2(pb, cl, w));
+      for (int i : cl) resid[i] -= u * pb.dg[i];
+    }
+  }
+  std::vector<double> ss(static_cast<size_t>(pb.quantities()), 0.0);
+  std::vector<double> count(ss.size(), 0.0);
+  for (Eigen::Index i = 0; i < resid.size(); ++i) {
+    const size_t q = static_cast<size_t>(pb.quantity[static_cast<size_t>(i)]);
+    ss[q] += resid[i] * pb.unit[i] * resid[i] * pb.unit[i];
+    count[q] += 1.0;
+  }
+  Eigen::VectorXd lambda = Eigen::VectorXd::Ones(pb.quantities());
+  const double s0 = std::max(ss[0] / count[0], 1e-300);
+  for (size_t q = 1; q < ss.size(); ++q) {
+    const double sq = std::max(ss[q] / std::max(count[q], 1.0), 1e-300);
+    lambda[static_cast<Eigen::Index>(q)] = std::clamp(std::sqrt(s0 / sq), 1e-3, 1e3);
+  }
+  return lambda;
+}
+
 ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calibrated,
-                       const DiagnosisOptions& opt, double* rho_out) {
+                       const DiagnosisOptions& opt, Noise* noise_out) {
   const DiagnosisCase& c = pb.c;
   ModelFit m;
   m.effect = e;
@@ -173,7 +273,7 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
   }
   const auto rows = all_rows(c.measured.rows.size());
   const int n = static_cast<int>(rows.size());
-  const int k = static_cast<int>(m.specs.size()) + 1 + (pb.random_effect ? 1 : 0);
+  const int k = static_cast<int>(m.specs.size()) + pb.quantities() + (pb.random_effect ? 1 : 0);
   if (n - k - 1 <= 0) {
     throw InputError(c.measured.source + ": rows " + std::to_string(c.measured.rows.front().row) +
                      "-" + std::to_string(c.measured.rows.back().row) + ", column " +
@@ -182,44 +282,78 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
                      " needed to fit the " + std::to_string(m.specs.size()) +
                      " parameters of candidate " + std::string(effect_name(e)) + ".");
   }
-  // full data: multi-start at rho = 0, then profile the specimen variance ratio
-  FitResult best = fit_clusters(pb, pb.y, e, m.specs, initial_of(m.specs, calibrated),
-                                pb.clusters, 0.0, opt.multi_start);
-  double g2_mean = 0.0;
-  for (const auto& cl : pb.clusters) {
-    for (int i : cl) g2_mean += pb.g[i] * pb.g[i] / static_cast<double>(pb.clusters.size());
-  }
-  double best_rho = 0.0;
-  m.aicc = aicc(best.rss, 0.0, n, k);
-  if (pb.random_effect) {
-    Eigen::VectorXd start = best.params;
-    for (double s : kRhoGrid) {
-      if (s == 0.0) continue;
-      const double rho = s / g2_mean;
-      const FitResult fr = fit_clusters(pb, pb.y, e, m.specs, start, pb.clusters, rho, false);
-      const double a = aicc(fr.rss, log_det(pb, pb.clusters, rho), n, k);
-      start = fr.params;
-      if (a < m.aicc) {
-        m.aicc = a;
-        best = fr;
-        best_rho = rho;
+  // alternate: fit at the current precision ratios (multi-start at rho = 0 the first time,
+  // then profile the specimen variance ratio), re-estimate the ratios from the residuals;
+  // keep the (params, noise) with the lowest AICc, an exact likelihood value at each step
+  Noise noise{Eigen::VectorXd::Ones(pb.quantities()), 0.0};
+  Noise best_noise = noise;
+  FitResult best;
+  m.aicc = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd start = initial_of(m.specs, calibrated);
+  for (int it = 0; it < kNoiseIterations; ++it) {
+    const Eigen::VectorXd w = row_weights(pb, noise.lambda);
+    const double log_lambda = log_lambda_sum(pb, noise.lambda);
+    Noise at{noise.lambda, 0.0};
+    FitResult fit = fit_clusters(pb, pb.y, e, m.specs, start, pb.clusters, at,
+                                 opt.multi_start && it == 0);
+    double fit_aicc = aicc(fit.rss, 0.0, log_lambda, n, k);
+    double fit_rho = 0.0;
+    if (pb.random_effect) {
+      double g2_mean = 0.0;
+      for (const auto& cl : pb.clusters) {
+        g2_mean += cluster_g2(pb, cl, w) / static_cast<double>(pb.clusters.size());
+      }
+      Eigen::VectorXd warm = fit.params;
+      for (double s : kRhoGrid) {
+        if (s == 0.0) continue;
+        at.rho = s / g2_mean;
+        const FitResult fr = fit_clusters(pb, pb.y, e, m.specs, warm, pb.clusters, at, false);
+        const double a = aicc(fr.rss, log_det(pb, pb.clusters, at.rho, w), log_lambda, n, k);
+        warm = fr.params;
+        if (a < fit_aicc) {
+          fit_aicc = a;
+          fit = fr;
+          fit_rho = at.rho;
+        }
       }
     }
+    noise.rho = fit_rho;
+    if (fit_aicc < m.aicc) {
+      m.aicc = fit_aicc;
+      best = fit;
+      best_noise = noise;
+    }
+    if (pb.quantities() == 1) break;
+    const Eigen::VectorXd lambda = precision_ratios(pb, predict(pb, e, fit.params, rows), noise);
+    const double moved = (lambda.array().log() - noise.lambda.array().log()).abs().maxCoeff();
+    noise.lambda = lambda;
+    start = fit.params;
+    if (moved < 0.01) break;
   }
-  *rho_out = best_rho;
+  *noise_out = best_noise;
   m.params = best.params;
   m.predictions = predict(pb, e, m.params, rows);
-  m.rss = (m.predictions - pb.y).cwiseProduct(pb.weights).squaredNorm();
-  m.rmse = weighted_rmse(pb, m.predictions);
-  // held-out: refit on each fold's training rows, warm-started at the full-data optimum
+  m.rss = (m.predictions - pb.y).cwiseProduct(pb.unit).squaredNorm();
+  m.rmse = score(pb, m.predictions);
+  {
+    // profiled noise sd per quantity, in the quantity's own unit
+    const Eigen::VectorXd w = row_weights(pb, best_noise.lambda);
+    const double sigma = std::sqrt(best.rss / n);
+    m.noise_sd.assign(static_cast<size_t>(pb.quantities()), 0.0);
+    for (Eigen::Index i = 0; i < pb.y.size(); ++i) {
+      m.noise_sd[static_cast<size_t>(pb.quantity[static_cast<size_t>(i)])] = sigma / w[i];
+    }
+  }
+  // held-out: refit on each fold's training rows, warm-started at the full-data optimum, with
+  // the full-data noise model
   m.heldout_predictions = Eigen::VectorXd::Constant(n, NAN);
   for (const Fold& f : c.folds) {
     const FitResult fr =
-        fit_clusters(pb, pb.y, e, m.specs, m.params, clusters_of(pb, f.train), best_rho, false);
+        fit_clusters(pb, pb.y, e, m.specs, m.params, clusters_of(pb, f.train), best_noise, false);
     const Eigen::VectorXd p = predict(pb, e, fr.params, f.test);
     for (size_t i = 0; i < f.test.size(); ++i) m.heldout_predictions[f.test[i]] = p[static_cast<Eigen::Index>(i)];
   }
-  m.heldout_rmse = weighted_rmse(pb, m.heldout_predictions);
+  m.heldout_rmse = score(pb, m.heldout_predictions);
   return m;
 }
 
@@ -233,21 +367,22 @@ ModelFit practitioner_baseline(const Problem& pb) {
   m.params = c.calibrate_baseline(rows);
   const Eigen::VectorXd none;
   m.predictions = c.predict(Effect::none, m.params, none, rows);
-  m.rss = (m.predictions - pb.y).cwiseProduct(pb.weights).squaredNorm();
-  m.rmse = weighted_rmse(pb, m.predictions);
-  m.aicc = aicc(m.rss, 0.0, static_cast<int>(rows.size()), static_cast<int>(m.specs.size()) + 1);
+  m.rss = (m.predictions - pb.y).cwiseProduct(pb.unit).squaredNorm();
+  m.rmse = score(pb, m.predictions);
+  m.aicc = aicc(m.rss, 0.0, 0.0, static_cast<int>(rows.size()),
+                static_cast<int>(m.specs.size()) + 1);
   m.heldout_predictions = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(rows.size()), NAN);
   for (const Fold& f : c.folds) {
     const Eigen::VectorXd p = c.predict(Effect::none, c.calibrate_baseline(f.train), none, f.test);
     for (size_t i = 0; i < f.test.size(); ++i) m.heldout_predictions[f.test[i]] = p[static_cast<Eigen::Index>(i)];
   }
-  m.heldout_rmse = weighted_rmse(pb, m.heldout_predictions);
+  m.heldout_rmse = score(pb, m.heldout_predictions);
   return m;
 }
 
 // bootstrap of the chosen fit: specimens resampled within each condition when specimens are
 // given (their scatter dominates), otherwise residuals resampled within each quantity
-void bootstrap(const Problem& pb, ModelFit& m, double rho, const DiagnosisOptions& opt) {
+void bootstrap(const Problem& pb, ModelFit& m, const Noise& noise, const DiagnosisOptions& opt) {
   if (opt.bootstrap <= 0) return;
   const auto& rows = pb.c.measured.rows;
   std::mt19937_64 rng(opt.seed);
@@ -272,14 +407,14 @@ void bootstrap(const Problem& pb, ModelFit& m, double rho, const DiagnosisOption
           draw.push_back(pb.clusters[static_cast<size_t>(members[pick(rng)])]);
         }
       }
-      fr = fit_clusters(pb, pb.y, m.effect, m.specs, m.params, draw, rho, false);
+      fr = fit_clusters(pb, pb.y, m.effect, m.specs, m.params, draw, noise, false);
     } else {
       Eigen::VectorXd y_star = m.predictions;
       for (const auto& [q, members] : by_key) {
         std::uniform_int_distribution<size_t> pick(0, members.size() - 1);
         for (int i : members) y_star[i] += resid[members[pick(rng)]];
       }
-      fr = fit_clusters(pb, y_star, m.effect, m.specs, m.params, pb.clusters, 0.0, false);
+      fr = fit_clusters(pb, y_star, m.effect, m.specs, m.params, pb.clusters, noise, false);
     }
     for (Eigen::Index j = 0; j < np; ++j) samples[static_cast<size_t>(j)].push_back(fr.params[j]);
   }
@@ -306,23 +441,30 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   const auto& rows = c.measured.rows;
   if (rows.empty()) throw InputError(c.measured.source + ": row 2: the file holds no measurements.");
   DiagnosisResult res;
-  // weights: quantities scaled into the first quantity's unit by their RMS magnitudes
+  // quantities in order of appearance; unit conversion into the first one by RMS magnitudes
   std::map<std::string, double> sum_sq;
   std::map<std::string, int> count;
+  std::map<std::string, int> index;
+  Problem pb{c, Eigen::VectorXd(static_cast<Eigen::Index>(rows.size())),
+             Eigen::VectorXd(static_cast<Eigen::Index>(rows.size())), {}, {}, {}, {}, false};
   for (const auto& r : rows) {
     sum_sq[r.quantity] += r.value * r.value;
     count[r.quantity] += 1;
+    if (!index.count(r.quantity)) {
+      index[r.quantity] = static_cast<int>(pb.quantity_names.size());
+      pb.quantity_names.push_back(r.quantity);
+    }
   }
   res.rmse_unit = rows.front().quantity;
+  res.quantities = pb.quantity_names;
   const double ref = std::sqrt(sum_sq[res.rmse_unit] / count[res.rmse_unit]);
-  Problem pb{c, Eigen::VectorXd(static_cast<Eigen::Index>(rows.size())),
-             Eigen::VectorXd(static_cast<Eigen::Index>(rows.size())), {}, {}, false};
   for (size_t i = 0; i < rows.size(); ++i) {
     const double scale = std::sqrt(sum_sq[rows[i].quantity] / count[rows[i].quantity]);
     pb.y[static_cast<Eigen::Index>(i)] = rows[i].value;
-    pb.weights[static_cast<Eigen::Index>(i)] = (scale > 0.0) ? ref / scale : 1.0;
+    pb.unit[static_cast<Eigen::Index>(i)] = (scale > 0.0) ? ref / scale : 1.0;
+    pb.quantity.push_back(index[rows[i].quantity]);
   }
-  res.weights = pb.weights;
+  res.weights = pb.unit;
 
   // specimens: clusters of rows; without them every row is its own cluster
   std::map<std::string, std::vector<int>> by_specimen;
@@ -339,22 +481,22 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   }
 
   res.baseline = practitioner_baseline(pb);
-  // random-effect direction: d prediction / d ln(specimen parameter), weighted (for depth
-  // this is not the depth itself: depth grows less than proportionally with volume)
+  // random-effect direction: d prediction / d ln(specimen parameter) (for depth this is not
+  // the depth itself: depth grows less than proportionally with volume)
   {
     Eigen::VectorXd b2 = res.baseline.params;
     b2[c.specimen_param] *= 1.01;
     const Eigen::VectorXd none;
     const Eigen::VectorXd up = c.predict(Effect::none, b2, none, all_rows(rows.size()));
-    pb.g = ((up - res.baseline.predictions) / std::log(1.01)).cwiseProduct(pb.weights);
+    pb.dg = (up - res.baseline.predictions) / std::log(1.01);
   }
   std::vector<Effect> effects = {Effect::none};
   effects.insert(effects.end(), c.candidates.begin(), c.candidates.end());
-  std::vector<double> rhos;
+  std::vector<Noise> noises;
   for (Effect e : effects) {
-    double rho = 0.0;
-    res.candidates.push_back(fit_candidate(pb, e, res.baseline.params, options, &rho));
-    rhos.push_back(rho);
+    Noise noise;
+    res.candidates.push_back(fit_candidate(pb, e, res.baseline.params, options, &noise));
+    noises.push_back(noise);
   }
 
   // selection against "none"
@@ -370,7 +512,7 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
     }
   }
   bootstrap(pb, res.candidates[static_cast<size_t>(res.selected)],
-            rhos[static_cast<size_t>(res.selected)], options);
+            noises[static_cast<size_t>(res.selected)], options);
   res.gain = (res.baseline.heldout_rmse > 0.0)
                  ? 1.0 - res.extended().heldout_rmse / res.baseline.heldout_rmse
                  : 0.0;

@@ -4,9 +4,11 @@
 // seeded residual bootstrap of the chosen fit; and the gain
 // 1 - heldout_rmse_extended / heldout_rmse_baseline.
 //
-// Residuals of different quantities (volume, depth) are weighted into the units of the first
-// quantity in the data by the ratio of their measured RMS values, so one RMSE summarises a
-// fit and is printed in a familiar unit (mm^3 for a volume-first case).
+// Noise model: one variance per measured quantity (volume and depth; AP and IE), profiled with
+// every fit, in AICc and in the held-out score alike. RMSEs are the count-weighted geometric
+// mean of the per-quantity RMSEs (the same Gaussian likelihood), printed in the unit of the
+// first quantity in the data (other quantities converted by the ratio of their measured RMS
+// values, which cancels in every comparison); for one quantity it is the plain RMSE.
 //
 // Specimens: when the data name them, every fit carries a specimen random effect (the
 // specimen's wear factor scatters multiplicatively), whitened exactly, with its variance ratio
@@ -48,11 +50,13 @@ struct ModelFit {
   double rmse = 0.0;                   // in-sample [rmse_unit]
   double heldout_rmse = 0.0;           // held-out [rmse_unit]
   double aicc = 0.0;                   // corrected Akaike information criterion [-]
+  std::vector<double> noise_sd;        // profiled noise sd per quantity [quantity unit]
 };
 
 struct DiagnosisResult {
   std::string rmse_unit;            // quantity whose unit the RMSEs carry, e.g. "volume_mm3"
-  Eigen::VectorXd weights;          // residual weight per measurement [-]
+  std::vector<std::string> quantities;  // measured quantities, first = rmse_unit
+  Eigen::VectorXd weights;          // unit conversion into rmse_unit per measurement [-]
   ModelFit baseline;                // practitioner's calibration, not refitted
   std::vector<ModelFit> candidates; // "none" first, then the case's candidates
   int selected = 0;                 // index into candidates

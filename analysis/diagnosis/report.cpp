@@ -118,6 +118,13 @@ std::string diagnosis_markdown(const DiagnosisCase& c, const DiagnosisResult& r)
     }
     md += "| " + e.specs[i].name + " | " + num(e.params[k]) + " | " + ci + " |\n";
   }
+  if (r.quantities.size() > 1) {
+    md += "\nProfiled noise sd per quantity:";
+    for (size_t q = 0; q < r.quantities.size() && q < e.noise_sd.size(); ++q) {
+      md += std::string(q ? "," : "") + " " + r.quantities[q] + " " + num(e.noise_sd[q]);
+    }
+    md += ".\n";
+  }
   md += "\nIn-sample RMSE " + num(e.rmse) + ", held-out RMSE " + num(e.heldout_rmse) +
         " (" + r.rmse_unit + ").\n\n**Gain** = 1 - heldout_rmse_extended / "
         "heldout_rmse_baseline = " + num(r.gain, "%.3f") + ".\n\n";
@@ -135,8 +142,10 @@ std::string diagnosis_markdown(const DiagnosisCase& c, const DiagnosisResult& r)
   }
   md += "\nSelection: a candidate must lower AICc by more than the threshold and the held-out "
         "RMSE by more than the threshold fraction against `none` (the baseline refitted by "
-        "least squares); the lowest held-out RMSE among those wins. Residuals of other "
-        "quantities are weighted into " + r.rmse_unit + " by the ratio of measured RMS values.\n";
+        "least squares); the lowest held-out RMSE among those wins. Noise: one variance per measured "
+        "quantity, profiled in every fit; with several quantities an RMSE is the "
+        "count-weighted geometric mean of the per-quantity RMSEs (the same likelihood), each "
+        "converted into " + r.rmse_unit + " by the ratio of measured RMS values.\n";
   return md;
 }
 

@@ -3,8 +3,11 @@
 //   267, 161, 151 nm at 2.5 N; acceptance (issue 5): within a factor of 2;
 // - its trends: particle size grows with load; the layered (transfer film) steel-brass model
 //   gives smaller particles than the homogeneous one; the softer surface's roughness barely
-//   changes the size while the harder surface's roughness does.
-// Runs 8 wear iterations per case on the study's 240 x 240 grid (minutes in Release).
+//   changes the size while the harder surface's roughness does;
+// - equilibrium: every wear-loop contact carries the window's load.
+// Each case runs the default wear loop (8-12 iterations, steady-state check) on the study's
+// 240 x 240 grid; the roughness trend is averaged over three surface seeds (about 2 min in
+// Release on 2 cores).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -16,21 +19,34 @@ using namespace kneesim::particles;
 
 namespace {
 
-SizeStats run(PairName pair, double load, double softer_rq_scale = 1.0,
-              double harder_rq_scale = 1.0, bool film = true) {
-  ParticleModelConfig c = make_pair_config(pair);
-  c.load = load;
-  c.max_iterations = 8;
-  c.min_iterations = 8;
-  c.softer.roughness.rq *= softer_rq_scale;
-  c.harder.roughness.rq *= harder_rq_scale;
-  if (!film) c.harder.elastic.film_thickness = 0.0;
+struct Case {
+  PairName pair = PairName::kSteelSteel;
+  double load = 10.0;           // [N]
+  double softer_rq_scale = 1.0; // [-]
+  double harder_rq_scale = 1.0; // [-]
+  bool film = true;
+  int seed_offset = 0;          // added to both preset seeds [-]
+};
+
+SizeStats run(const Case& k) {
+  ParticleModelConfig c = make_pair_config(k.pair);
+  c.load = k.load;
+  c.softer.roughness.rq *= k.softer_rq_scale;
+  c.harder.roughness.rq *= k.harder_rq_scale;
+  c.softer.roughness.seed += k.seed_offset;
+  c.harder.roughness.seed += k.seed_offset;
+  if (!k.film) c.harder.elastic.film_thickness = 0.0;
   const ParticleModelResult r = run_particle_model(c, "long test");
-  std::printf("%s %g N (softer Rq x%g, harder Rq x%g, film %d): %ld particles, R %.0f L %.0f "
-              "W %.0f T %.0f nm, %.0f s\n",
-              c.pair.c_str(), load, softer_rq_scale, harder_rq_scale, int(film), r.steady.particles,
-              r.steady.eq_radius * 1e9, r.steady.length * 1e9, r.steady.width * 1e9,
-              r.steady.thickness * 1e9, r.seconds);
+  std::printf("%s %g N (softer Rq x%g, harder Rq x%g, film %d, seeds +%d): %ld particles in %zu "
+              "iterations, R %.0f L %.0f W %.0f T %.0f nm, V %.4g um3, %.0f s\n",
+              c.pair.c_str(), k.load, k.softer_rq_scale, k.harder_rq_scale, int(k.film),
+              k.seed_offset, r.steady.particles, r.iterations.size(), r.steady.eq_radius * 1e9,
+              r.steady.length * 1e9, r.steady.width * 1e9, r.steady.thickness * 1e9,
+              r.steady.volume * 1e18, r.seconds);
+  // equilibrium in every iteration (the nearly fully plastic contact once lost up to 60 %)
+  for (const IterationRecord& it : r.iterations) {
+    CHECK(it.load == doctest::Approx(window_load(c)).epsilon(1e-6));
+  }
   return r.steady;
 }
 
@@ -40,37 +56,49 @@ bool within_factor_2(double predicted, double reference) {
 
 }  // namespace
 
+// Load trend: the mean particle volume doubles from 2.5 to 10 N (4 of 4 seed pairs, x1.6 to
+// x2.6) and the width grows by about 8 %; the mean length and equivalent radius hardly move
+// (docs/particles.md), so the test asserts volume and width.
 TEST_CASE("steel-steel particle sizes within a factor 2 of the study's model; grow with load") {
-  const SizeStats s10 = run(PairName::kSteelSteel, 10.0);
-  const SizeStats s25 = run(PairName::kSteelSteel, 2.5);
+  const SizeStats s10 = run(Case{PairName::kSteelSteel, 10.0});
+  const SizeStats s25 = run(Case{PairName::kSteelSteel, 2.5});
   CHECK(within_factor_2(s10.length * 1e9, 442));
   CHECK(within_factor_2(s10.width * 1e9, 245));
   CHECK(within_factor_2(s10.thickness * 1e9, 197));
   CHECK(within_factor_2(s25.length * 1e9, 267));
   CHECK(within_factor_2(s25.width * 1e9, 161));
   CHECK(within_factor_2(s25.thickness * 1e9, 151));
-  CHECK(s10.length > s25.length);
-  CHECK(s10.volume > s25.volume);
+  CHECK(s10.volume > 1.3 * s25.volume);
+  CHECK(s10.width > s25.width);
 }
 
-// known gap (docs/particles.md): in the nearly fully plastic contact the film's compliance
-// hardly changes the pressure, and the layered particles come out no smaller; run, reported,
-// allowed to fail
+// Known gap (docs/particles.md, "Layered steel-brass"): the rough contact is fully plastic
+// (the uncapped elastic peaks would be 60-80 x H), so the film's lower composite modulus,
+// which lowers the elastic pressures by about 25 %, leaves the capped pressure and the
+// particles within about 2 %; run, reported, allowed to fail
 TEST_CASE("steel-brass: the layered model gives smaller particles than the homogeneous one" *
           doctest::may_fail()) {
-  const SizeStats layered = run(PairName::kSteelBrass, 10.0, 1.0, 1.0, true);
-  const SizeStats homogeneous = run(PairName::kSteelBrass, 10.0, 1.0, 1.0, false);
-  CHECK(layered.eq_radius < homogeneous.eq_radius);
+  const SizeStats layered = run(Case{PairName::kSteelBrass, 10.0, 1.0, 1.0, true});
+  const SizeStats homogeneous = run(Case{PairName::kSteelBrass, 10.0, 1.0, 1.0, false});
+  CHECK(layered.eq_radius < 0.95 * homogeneous.eq_radius);
 }
 
-// weak in this model (docs/particles.md): both changes move the radius by about 5 %, so the
-// case is run and reported but allowed to fail
-TEST_CASE("roughness trend: softer barely matters, harder does" * doctest::may_fail()) {
-  const SizeStats base = run(PairName::kSteelSteel, 10.0);
-  const SizeStats softer2 = run(PairName::kSteelSteel, 10.0, 2.0, 1.0);
-  const SizeStats harder2 = run(PairName::kSteelSteel, 10.0, 1.0, 2.0);
-  const double d_soft = std::abs(softer2.eq_radius / base.eq_radius - 1.0);
-  const double d_hard = std::abs(harder2.eq_radius / base.eq_radius - 1.0);
+// Roughness trend, averaged over three surface seeds: doubling the softer disk's Rq moves the
+// mean radius by less than 10 %, doubling the harder cylinder's Rq moves it by more than
+// 10 % and by more than twice the softer surface's effect.
+TEST_CASE("roughness trend: softer barely matters, harder does (three seeds)") {
+  double base = 0.0, softer2 = 0.0, harder2 = 0.0;
+  for (int s = 0; s < 3; ++s) {
+    base += run(Case{PairName::kSteelSteel, 10.0, 1.0, 1.0, true, 100 * s}).eq_radius / 3.0;
+    softer2 += run(Case{PairName::kSteelSteel, 10.0, 2.0, 1.0, true, 100 * s}).eq_radius / 3.0;
+    harder2 += run(Case{PairName::kSteelSteel, 10.0, 1.0, 2.0, true, 100 * s}).eq_radius / 3.0;
+  }
+  const double d_soft = std::abs(softer2 / base - 1.0);
+  const double d_hard = harder2 / base - 1.0;
+  std::printf("roughness trend over 3 seeds: R base %.1f, softer x2 %.1f (%+.1f %%), harder x2 "
+              "%.1f (%+.1f %%) nm\n",
+              base * 1e9, softer2 * 1e9, 100 * (softer2 / base - 1.0), harder2 * 1e9, 100 * d_hard);
   CHECK(d_soft < 0.1);
-  CHECK(d_hard > d_soft);
+  CHECK(d_hard > 0.1);
+  CHECK(d_hard > 2.0 * d_soft);
 }

@@ -135,7 +135,9 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     }
     const double g_norm = row_sum(nx, ny, [&](long k) { return in_set(k) ? gap[k] * gap[k] : 0.0; });
     // conjugate search direction
-    const double beta = conjugate ? g_norm / g_old : 0.0;
+    // (g_old = 0 when the set was a single cell, whose gap the mean shift makes exactly zero:
+    // 0 / 0 would turn the direction, the step and then the pressure into NaN)
+    const double beta = conjugate && g_old > 0.0 ? g_norm / g_old : 0.0;
     for (long k = 0; k < n; ++k) t[k] = in_set(k) ? gap[k] + beta * t[k] : 0.0;
     g_old = g_norm;
     // step length from the deflection of the direction
@@ -143,7 +145,7 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     const double n_r = row_sum(nx, ny, [&](long k) { return in_set(k) ? r[k] : 0.0; }) / n_set;
     const double rt = row_sum(nx, ny, [&](long k) { return in_set(k) ? (r[k] - n_r) * t[k] : 0.0; });
     const double gt = row_sum(nx, ny, [&](long k) { return in_set(k) ? gap[k] * t[k] : 0.0; });
-    const double tau = rt != 0.0 ? gt / rt : 0.0;
+    const double tau = rt != 0.0 && std::isfinite(gt / rt) ? gt / rt : 0.0;
     p_old = p;
     for (long k = 0; k < n; ++k) {
       if (in_set(k)) p[k] = std::clamp(p[k] - tau * t[k], 0.0, cap);
@@ -161,7 +163,9 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
     // impose the load on the cells below the cap
     const double w_cap = area * row_sum(nx, ny, [&](long k) { return p[k] >= cap ? cap : 0.0; });
     const double w_free = area * row_sum(nx, ny, [&](long k) { return p[k] < cap ? p[k] : 0.0; });
-    if (w_free > 0.0 && target > w_cap) {
+    // (a denormal w_free would overflow the scale to inf and 0 * inf put NaN into the open
+    // cells; such a step is left short of load and placed plastically below)
+    if (w_free > 0.0 && target > w_cap && std::isfinite((target - w_cap) / w_free)) {
       const double s = (target - w_cap) / w_free;
       for (long k = 0; k < n; ++k) {
         if (p[k] < cap) p[k] = std::min(p[k] * s, cap);

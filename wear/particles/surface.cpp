@@ -84,6 +84,25 @@ double lambda_s_transmission(double q, double lambda_s) {
   return std::exp(-std::log(2.0) * w * w);
 }
 
+void apply_lambda_s_filter(const Grid& grid, double lambda_s, std::vector<double>& field) {
+  if (!(lambda_s > 0.0)) return;
+  const int nx = grid.nx, ny = grid.ny;
+  Fft2 fft(nx, ny);
+  const int nc = fft.nyc();
+  std::vector<Complex> spec(static_cast<long>(nx) * nc);
+  fft.forward(field.data(), spec.data(), nx);
+  const double norm = 1.0 / (double(nx) * ny);
+  for (int ix = 0; ix < nx; ++ix) {
+    const int m = ix <= nx / 2 ? ix : ix - nx;
+    const double qx = 2.0 * kPi * m / (nx * grid.dx);
+    for (int iy = 0; iy < nc; ++iy) {
+      const double qy = 2.0 * kPi * iy / (ny * grid.dy);
+      spec[static_cast<long>(ix) * nc + iy] *= norm * lambda_s_transmission(std::hypot(qx, qy), lambda_s);
+    }
+  }
+  fft.inverse(spec.data(), field.data(), nx);
+}
+
 SurfaceStats calc_surface_stats(const std::vector<double>& h) {
   SurfaceStats s;
   const double n = static_cast<double>(h.size());

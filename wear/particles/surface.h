@@ -68,4 +68,8 @@ bool solve_fleishman(double skewness, double kurtosis, double& b, double& c, dou
 // wavenumber q [rad/m]: exp(-ln 2 (lambda_s q / 2 pi)^2); 1 when lambda_s = 0
 double lambda_s_transmission(double q, double lambda_s);
 
+// filters a field periodic in both directions (grid.size()) in place with the lambda_s
+// Gaussian low-pass; the mean is kept; nothing happens when lambda_s = 0
+void apply_lambda_s_filter(const Grid& grid, double lambda_s, std::vector<double>& field);
+
 }  // namespace kneesim::particles

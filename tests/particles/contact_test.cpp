@@ -142,3 +142,25 @@ TEST_CASE("bad input: load above hardness x area, bad grids") {
     CHECK(std::string(e.what()).find("particles.toml [grid]") != std::string::npos);
   }
 }
+
+// Reference: the closed-form surface compliance of a layer bonded to a half-space under a
+// normal Fourier mode (O'Sullivan & King, J. Tribol. 110:235, 1988; k = G1/G2,
+// l = 1 - 4(1 - nu1)/(1 + k(3 - 4 nu2)), m = (k - 1)/(k + 3 - 4 nu1)), independent of the 6x6
+// boundary system used in deflection.cpp; film softer and stiffer than the substrate, and
+// unequal Poisson ratios.
+TEST_CASE("layered frequency response equals the closed form of a bonded layer") {
+  const double h = 0.5e-6;
+  struct M { double ef, es, nuf, nus; };
+  for (const M& m : {M{88e9, 210e9, 0.3, 0.3}, M{210e9, 88e9, 0.3, 0.3}, M{88e9, 210e9, 0.35, 0.25}}) {
+    const double g1 = m.ef / (2 * (1 + m.nuf)), g2 = m.es / (2 * (1 + m.nus)), k = g1 / g2;
+    const double l = 1 - 4 * (1 - m.nuf) / (1 + k * (3 - 4 * m.nus));
+    const double mm = (k - 1) / (k + 3 - 4 * m.nuf);
+    for (double ah : {0.01, 0.1, 0.3, 1.0, 2.0, 5.0}) {
+      const double e2 = std::exp(-2 * ah), e4 = e2 * e2;
+      const double closed = (1 - m.nuf) / (g1 * (ah / h)) * (1 + 4 * mm * ah * e2 - l * mm * e4) /
+                            (1 - (l + mm + 4 * mm * ah * ah) * e2 + l * mm * e4);
+      CHECK(layered_compliance_frf(ah / h, h, m.ef, m.nuf, m.es, m.nus) ==
+            doctest::Approx(closed).epsilon(1e-9));
+    }
+  }
+}

@@ -1,7 +1,8 @@
 // Benchmark of the particle BEM (issue 5 targets on this machine, Release):
 //   a 256 x 256 rough contact solve <= 0.5 s, the 256 x 256 x 64 von Mises field <= 2 s;
 // medians of repeated runs, plus the one-off operator set-up, and a grid convergence study
-// 80^2 .. 320^2 over the same physical window (each grid generates the same physical surfaces).
+// 80^2 .. 320^2 over the same physical window (each grid generates the same physical surfaces),
+// first contact and the full wear loop.
 // Usage: bench_particles [repeats=5] [--no-convergence] [--lambda-s-nm L]
 #include <omp.h>
 
@@ -155,6 +156,21 @@ int main(int argc, char** argv) {
                   *std::max_element(vmm.begin(), vmm.end()) / 1e6, s.particles, s.eq_radius * 1e9,
                   s.length * 1e9, s.width * 1e9, s.thickness * 1e9, ts, tf);
     }
+  }
+
+  // the wear loop on the same grids: preset surfaces and run settings, the window and the
+  // sliding step per iteration (30 cells of 102 nm = 3.06 um) held fixed in physical units
+  std::printf("\nwear-loop grid convergence (steel-steel, 10 N, default loop, window %.2f um)\n", window * 1e6);
+  std::printf("   n   dx_nm  iterations  particles  R_nm  L_nm  W_nm  T_nm  seconds\n");
+  for (int m : {80, 120, 160, 240, 320}) {
+    ParticleModelConfig cw = make_pair_config(PairName::kSteelSteel);
+    if (lambda_s >= 0.0) cw.harder.roughness.lambda_s = cw.softer.roughness.lambda_s = lambda_s;
+    cw.grid = Grid{m, m, window / m, window / m, true};
+    cw.slide_cells = static_cast<int>(std::lround(30 * 102e-9 / cw.grid.dx));
+    const ParticleModelResult r = run_particle_model(cw, "bench");
+    std::printf("%4d  %6.1f  %10zu  %9ld  %4.0f  %4.0f  %4.0f  %4.0f  %7.1f\n", m, cw.grid.dx * 1e9,
+                r.iterations.size(), r.steady.particles, r.steady.eq_radius * 1e9,
+                r.steady.length * 1e9, r.steady.width * 1e9, r.steady.thickness * 1e9, r.seconds);
   }
   return 0;
 }

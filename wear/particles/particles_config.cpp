@@ -1,46 +1,63 @@
 #include "wear/particles/particles_config.h"
 
 #include <cstdio>
-#include <toml++/toml.h>
+#include <set>
 
 #include "engine/errors.h"
+#include "tools/io/toml_file.h"
 
 namespace kneesim::particles {
 namespace {
 
+// reads typed values from the flattened document and remembers which keys it read, so that a
+// misspelt key is an error instead of a silently ignored input
 struct Reader {
   std::string file;
-  const toml::table& root;
+  const io::TomlDocument& doc;
+  mutable std::set<std::string> read;
+
+  const io::TomlEntry* find(const std::string& section, const std::string& key) const {
+    const std::string full = section.empty() ? key : section + "." + key;
+    read.insert(full);
+    const auto it = doc.find(full);
+    return it == doc.end() ? nullptr : &it->second;
+  }
+  std::string where(const std::string& section, const std::string& key,
+                    const io::TomlEntry& e) const {
+    return file + ":" + std::to_string(e.line) + ": " +
+           (section.empty() ? key : "[" + section + "] " + key);
+  }
 
   // a number at [section] key (section empty = top level) within [lo, hi], or `fallback`
   double number(const std::string& section, const std::string& key, double fallback, double lo,
                 double hi) const {
-    const toml::node* node = nullptr;
-    if (section.empty()) {
-      node = root.get(key);
-    } else if (const toml::table* t = root[section].as_table()) {
-      node = t->get(key);
-    }
-    if (node == nullptr) return fallback;
-    const std::optional<double> v = node->value<double>();
-    const std::string where = section.empty() ? key : "[" + section + "] " + key;
-    if (!v) throw InputError(file + ": " + where + " must be a number");
+    const io::TomlEntry* e = find(section, key);
+    if (e == nullptr) return fallback;
+    const double* v = std::get_if<double>(&e->value);
+    if (!v) throw InputError(where(section, key, *e) + " = " + io::describe(e->value) + " must be a number");
     if (!(*v >= lo && *v <= hi)) {
-      char buf[256];
-      std::snprintf(buf, sizeof buf, "%s: %s = %g is not allowed; the allowed range is %g to %g",
-                    file.c_str(), where.c_str(), *v, lo, hi);
+      char buf[512];
+      std::snprintf(buf, sizeof buf, "%s = %g is not allowed; the allowed range is %g to %g",
+                    where(section, key, *e).c_str(), *v, lo, hi);
       throw InputError(buf);
     }
     return *v;
   }
   std::string text(const std::string& section, const std::string& key,
                    const std::string& fallback) const {
-    const toml::node* node = section.empty() ? root.get(key)
-                                             : (root[section].as_table() ? root[section].as_table()->get(key) : nullptr);
-    if (node == nullptr) return fallback;
-    const std::optional<std::string> v = node->value<std::string>();
-    if (!v) throw InputError(file + ": " + (section.empty() ? key : "[" + section + "] " + key) + " must be a string");
+    const io::TomlEntry* e = find(section, key);
+    if (e == nullptr) return fallback;
+    const std::string* v = std::get_if<std::string>(&e->value);
+    if (!v) throw InputError(where(section, key, *e) + " = " + io::describe(e->value) + " must be a string");
     return *v;
+  }
+  void reject_unread() const {
+    for (const auto& [key, e] : doc) {
+      if (read.count(key) == 0) {
+        throw InputError(file + ":" + std::to_string(e.line) + ": unknown key '" + key +
+                         "' (see wear/particles/particles_config.h or docs/particles.md for the keys)");
+      }
+    }
   }
 };
 
@@ -71,14 +88,8 @@ void read_body(const Reader& r, const std::string& s, BodySpec& b) {
 
 ParticleModelConfig read_particle_config(const std::filesystem::path& path) {
   const std::string file = path.string();
-  toml::table root;
-  try {
-    root = toml::parse_file(file);
-  } catch (const toml::parse_error& e) {
-    throw InputError(file + ": not valid TOML at line " +
-                     std::to_string(e.source().begin.line) + " (" + std::string(e.description()) + ")");
-  }
-  const Reader r{file, root};
+  const io::TomlDocument doc = io::read_toml_file(path);
+  const Reader r{file, doc, {}};
   ParticleModelConfig c = make_pair_config(parse_pair(r.text("", "pair", "steel-steel"), file + ": pair"));
   c.load = r.number("", "load_N", c.load, 0.0, 1e6);
   c.friction = r.number("", "friction", c.friction, 0.0, 2.0);
@@ -99,6 +110,7 @@ ParticleModelConfig read_particle_config(const std::filesystem::path& path) {
   c.steady_tolerance = r.number("run", "steady_tolerance", c.steady_tolerance, 0.0, 10.0);
   read_body(r, "harder", c.harder);
   read_body(r, "softer", c.softer);
+  r.reject_unread();
   return c;
 }
 

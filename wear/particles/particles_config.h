@@ -8,7 +8,7 @@
 //   [harder] / [softer]  E_GPa nu hardness_GPa yield_GPa rq_nm skewness kurtosis
 //            correlation_length_nm lambda_s_nm seed film_thickness_nm film_E_GPa film_nu surface_csv
 //
-// This file is the particle module's only use of toml++.
+// The file is read through the toml++ adapter (tools/io/toml_file.h); unknown keys are errors.
 #pragma once
 
 #include <filesystem>

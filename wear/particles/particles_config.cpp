@@ -43,6 +43,21 @@ struct Reader {
     }
     return *v;
   }
+  // target = scale * value when the key is present (range checked in the file's unit);
+  // an absent key leaves target bit-identical to the preset
+  void set(const std::string& section, const std::string& key, double& target, double scale,
+           double lo, double hi) const {
+    if (doc.count(section.empty() ? key : section + "." + key)) {
+      target = scale * number(section, key, 0.0, lo, hi);
+    } else {
+      find(section, key);
+    }
+  }
+  template <class Int>
+  void set_int(const std::string& section, const std::string& key, Int& target, double lo,
+               double hi) const {
+    target = static_cast<Int>(number(section, key, static_cast<double>(target), lo, hi));
+  }
   std::string text(const std::string& section, const std::string& key,
                    const std::string& fallback) const {
     const io::TomlEntry* e = find(section, key);
@@ -63,21 +78,19 @@ struct Reader {
 
 void read_body(const Reader& r, const std::string& s, BodySpec& b) {
   constexpr double kBig = 1e30;
-  b.elastic.youngs_modulus = 1e9 * r.number(s, "E_GPa", b.elastic.youngs_modulus / 1e9, 1e-4, 2000);
-  b.elastic.poisson_ratio = r.number(s, "nu", b.elastic.poisson_ratio, 0.0, 0.499);
-  b.hardness = 1e9 * r.number(s, "hardness_GPa", b.hardness / 1e9, 1e-5, 100);
-  b.yield_stress = 1e9 * r.number(s, "yield_GPa", b.yield_stress / 1e9, 1e-5, 100);
-  b.roughness.rq = 1e-9 * r.number(s, "rq_nm", b.roughness.rq * 1e9, 1e-3, 1e5);
-  b.roughness.skewness = r.number(s, "skewness", b.roughness.skewness, -5, 5);
-  b.roughness.kurtosis = r.number(s, "kurtosis", b.roughness.kurtosis, 1.0, 50);
-  b.roughness.correlation_length =
-      1e-9 * r.number(s, "correlation_length_nm", b.roughness.correlation_length * 1e9, 1e-3, kBig);
-  b.roughness.lambda_s = 1e-9 * r.number(s, "lambda_s_nm", b.roughness.lambda_s * 1e9, 0.0, 1e9);
-  b.roughness.seed = static_cast<std::uint64_t>(r.number(s, "seed", double(b.roughness.seed), 0, 1e15));
-  b.elastic.film_thickness =
-      1e-9 * r.number(s, "film_thickness_nm", b.elastic.film_thickness * 1e9, 0.0, 1e6);
-  b.elastic.film_modulus = 1e9 * r.number(s, "film_E_GPa", b.elastic.film_modulus / 1e9, 0.0, 2000);
-  b.elastic.film_poisson = r.number(s, "film_nu", b.elastic.film_poisson, 0.0, 0.499);
+  r.set(s, "E_GPa", b.elastic.youngs_modulus, 1e9, 1e-4, 2000);
+  r.set(s, "nu", b.elastic.poisson_ratio, 1.0, 0.0, 0.499);
+  r.set(s, "hardness_GPa", b.hardness, 1e9, 1e-5, 100);
+  r.set(s, "yield_GPa", b.yield_stress, 1e9, 1e-5, 100);
+  r.set(s, "rq_nm", b.roughness.rq, 1e-9, 1e-3, 1e5);
+  r.set(s, "skewness", b.roughness.skewness, 1.0, -5, 5);
+  r.set(s, "kurtosis", b.roughness.kurtosis, 1.0, 1.0, 50);
+  r.set(s, "correlation_length_nm", b.roughness.correlation_length, 1e-9, 1e-3, kBig);
+  r.set(s, "lambda_s_nm", b.roughness.lambda_s, 1e-9, 0.0, 1e9);
+  r.set_int(s, "seed", b.roughness.seed, 0, 1e15);
+  r.set(s, "film_thickness_nm", b.elastic.film_thickness, 1e-9, 0.0, 1e6);
+  r.set(s, "film_E_GPa", b.elastic.film_modulus, 1e9, 0.0, 2000);
+  r.set(s, "film_nu", b.elastic.film_poisson, 1.0, 0.0, 0.499);
   if (b.elastic.film_thickness > 0.0 && !(b.elastic.film_modulus > 0.0)) {
     throw InputError(r.file + ": [" + s + "] film_E_GPa must be > 0 when film_thickness_nm > 0");
   }
@@ -91,23 +104,24 @@ ParticleModelConfig read_particle_config(const std::filesystem::path& path) {
   const io::TomlDocument doc = io::read_toml_file(path);
   const Reader r{file, doc, {}};
   ParticleModelConfig c = make_pair_config(parse_pair(r.text("", "pair", "steel-steel"), file + ": pair"));
-  c.load = r.number("", "load_N", c.load, 0.0, 1e6);
-  c.friction = r.number("", "friction", c.friction, 0.0, 2.0);
-  c.cylinder_radius = 1e-3 * r.number("", "cylinder_radius_mm", c.cylinder_radius * 1e3, 1e-6, 1e6);
-  c.cylinder_length = 1e-3 * r.number("", "cylinder_length_mm", c.cylinder_length * 1e3, 1e-6, 1e6);
+  r.set("", "load_N", c.load, 1.0, 0.0, 1e6);
+  r.set("", "friction", c.friction, 1.0, 0.0, 2.0);
+  r.set("", "cylinder_radius_mm", c.cylinder_radius, 1e-3, 1e-6, 1e6);
+  r.set("", "cylinder_length_mm", c.cylinder_length, 1e-3, 1e-6, 1e6);
   // grid sizes are checked against memory by check_grid when the run starts
-  c.grid.nx = static_cast<int>(r.number("grid", "nx", c.grid.nx, -1e9, 1e9));
-  c.grid.ny = static_cast<int>(r.number("grid", "ny", c.grid.ny, -1e9, 1e9));
-  c.grid.dx = c.grid.dy = 1e-9 * r.number("grid", "dx_nm", c.grid.dx * 1e9, -1e9, 1e9);
-  c.nz = static_cast<int>(r.number("grid", "nz", c.nz, -1e9, 1e9));
-  c.dz = 1e-9 * r.number("grid", "dz_nm", c.dz * 1e9, 1e-6, 1e9);
-  c.refine = static_cast<int>(r.number("grid", "refine", c.refine, 1, 16));
-  c.min_iterations = static_cast<int>(r.number("run", "min_iterations", c.min_iterations, 1, 1e6));
-  c.max_iterations = static_cast<int>(r.number("run", "max_iterations", c.max_iterations, 1, 1e6));
-  c.block = static_cast<int>(r.number("run", "block", c.block, 1, 1e6));
-  c.slide_cells = static_cast<int>(r.number("run", "slide_cells", c.slide_cells, 0, 1e9));
-  c.track_factor = static_cast<int>(r.number("run", "track_factor", c.track_factor, 1, 64));
-  c.steady_tolerance = r.number("run", "steady_tolerance", c.steady_tolerance, 0.0, 10.0);
+  r.set_int("grid", "nx", c.grid.nx, -1e9, 1e9);
+  r.set_int("grid", "ny", c.grid.ny, -1e9, 1e9);
+  r.set("grid", "dx_nm", c.grid.dx, 1e-9, -1e9, 1e9);
+  c.grid.dy = c.grid.dx;
+  r.set_int("grid", "nz", c.nz, -1e9, 1e9);
+  r.set("grid", "dz_nm", c.dz, 1e-9, 1e-6, 1e9);
+  r.set_int("grid", "refine", c.refine, 1, 16);
+  r.set_int("run", "min_iterations", c.min_iterations, 1, 1e6);
+  r.set_int("run", "max_iterations", c.max_iterations, 1, 1e6);
+  r.set_int("run", "block", c.block, 1, 1e6);
+  r.set_int("run", "slide_cells", c.slide_cells, 0, 1e9);
+  r.set_int("run", "track_factor", c.track_factor, 1, 64);
+  r.set("run", "steady_tolerance", c.steady_tolerance, 1.0, 0.0, 10.0);
   read_body(r, "harder", c.harder);
   read_body(r, "softer", c.softer);
   r.reject_unread();

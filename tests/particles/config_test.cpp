@@ -1,0 +1,60 @@
+// The particle model's TOML input (wear/particles/particles_config.h). References: the values
+// written in the file override the pair preset and nothing else does; the design.md error
+// contract (one sentence naming file, line, key, value and range) for the bad inputs tried.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "engine/errors.h"
+#include "tests/loads/temp_dir.h"
+#include "wear/particles/particles_config.h"
+
+using kneesim::InputError;
+using kneesim::test::TempDir;
+namespace pt = kneesim::particles;
+
+namespace {
+
+std::string error_of(const std::filesystem::path& file) {
+  try {
+    pt::read_particle_config(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("particle config: the file overrides the preset, in SI inside") {
+  TempDir tmp;
+  const auto f = tmp.write("p.toml",
+                           "pair = \"steel-steel\"\nload_N = 2.5\n"
+                           "[grid]\nnx = 128\nny = 96\ndx_nm = 150\n"
+                           "[softer]\nrq_nm = 300\n");
+  const pt::ParticleModelConfig c = pt::read_particle_config(f);
+  const pt::ParticleModelConfig preset = pt::make_pair_config(pt::parse_pair("steel-steel", "t"));
+  CHECK(c.load == 2.5);
+  CHECK(c.grid.nx == 128);
+  CHECK(c.grid.ny == 96);
+  CHECK(c.grid.dx == doctest::Approx(150e-9));
+  CHECK(c.softer.roughness.rq == doctest::Approx(300e-9));
+  CHECK(c.harder.roughness.rq == preset.harder.roughness.rq);
+  CHECK(c.friction == preset.friction);
+}
+
+TEST_CASE("particle config: bad input names file, line and key") {
+  TempDir tmp;
+  const std::string range = error_of(tmp.write("a.toml", "pair = \"steel-steel\"\nfriction = 3\n"));
+  CHECK(range.find("a.toml:2") != std::string::npos);
+  CHECK(range.find("friction") != std::string::npos);
+  CHECK(range.find("allowed range") != std::string::npos);
+  const std::string unknown = error_of(tmp.write("b.toml", "[harder]\nrq = 50\n"));
+  CHECK(unknown.find("b.toml:2") != std::string::npos);
+  CHECK(unknown.find("harder.rq") != std::string::npos);
+  const std::string type = error_of(tmp.write("c.toml", "load_N = \"ten\"\n"));
+  CHECK(type.find("load_N") != std::string::npos);
+  CHECK(type.find("number") != std::string::npos);
+  const std::string pair = error_of(tmp.write("d.toml", "pair = \"steel-wood\"\n"));
+  CHECK(pair.find("steel-wood") != std::string::npos);
+}

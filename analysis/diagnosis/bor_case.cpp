@@ -128,6 +128,9 @@ DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
                      ") at " + bor_load_label(options.calibration_load);
   c.baseline_params = {{"k_mm3_per_Nmm", "steady-state wear factor k_D [mm^3/(N mm)]", 1e-13,
                         1e-5, 4.1e-10, true, {}}};
+  // wear is measured gravimetrically or by profilometry: an absolute error plus a part
+  // proportional to the amount (fluid uptake, soak-control correction, calibration)
+  c.proportional_noise = true;
   c.candidates = {Effect::running_in, Effect::pressure_dependent_wear};
   if (has_depth) c.candidates.push_back(Effect::creep);
 

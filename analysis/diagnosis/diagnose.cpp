@@ -43,16 +43,17 @@ namespace {
 
 // The measurements with their noise and specimen structure.
 //
-// Noise: one variance per measured quantity, profiled with every fit: sigma_q = sigma /
-// lambda_q in the first quantity's unit (lambda = 1 for the first quantity). Residuals are
-// weighted by w_i = unit_i lambda_q(i), where unit_i converts quantity q into the first
-// quantity's unit by the ratio of the measured RMS values; the conversion only sets the unit
-// the RMSEs are printed in (the likelihood does not depend on it), lambda_q is what the data
-// say about the relative precision. Why: volume and depth (AP and IE) are measured with
-// different instruments and relative precisions; with one pooled variance the noisier quantity
-// is over-weighted, and an effect that changes only that quantity (creep: depth) gains
-// likelihood by fitting its noise (about 1 clean block-on-ring set in 750 was named `creep`
-// that way).
+// Noise: one variance per measured quantity, profiled with every fit, and, when the case says
+// its measurement error grows with the measured amount (wear: a balance or profilometer error
+// plus a relative part), a sd a_q + b_q |f| per quantity. Residuals (own units) are weighted by
+// w_i, sd_i = sigma / w_i; w_i starts at unit_i, which converts quantity q into the first
+// quantity's unit by the ratio of the measured RMS values (the conversion only sets the unit
+// the RMSEs are printed in; the likelihood does not depend on it), and is re-estimated from
+// the fit's residuals. Why: volume and depth (AP and IE) are measured with different
+// instruments and precisions; with one pooled variance the noisier quantity is over-weighted,
+// and an effect that changes only that quantity (creep: depth) gains likelihood by fitting its
+// noise (about 1 clean block-on-ring set in 750 was named `creep` that way). A sd that grows
+// with the value, fitted as a constant, likewise over-weights the large late measurements.
 //
 // Specimens: specimens of one material scatter in wear factor (multiplicatively), so the
 // residuals of one specimen are correlated; when specimens are given, every model is fitted
@@ -70,20 +71,15 @@ struct Problem {
   std::vector<std::vector<int>> clusters;  // specimens (rows), or one row each
   Eigen::VectorXd dg;                      // random-effect direction per row (unweighted)
   bool random_effect = false;              // specimens given: fit tau too
+  bool proportional = false;               // sd a_q + b_q |f| (case flag, enough rows)
   int quantities() const { return static_cast<int>(quantity_names.size()); }
 };
 
-// a fit's noise model: precision ratio per quantity and the specimen variance ratio
+// a fit's noise model: the residual weight of every row and the specimen variance ratio
 struct Noise {
-  Eigen::VectorXd lambda;  // per quantity [-], lambda[0] = 1
-  double rho = 0.0;        // tau^2 / sigma^2 in weighted units [-]
+  Eigen::VectorXd w;  // per row [1/quantity unit, up to the common sigma]
+  double rho = 0.0;   // tau^2 / sigma^2 in weighted units [-]
 };
-
-Eigen::VectorXd row_weights(const Problem& pb, const Eigen::VectorXd& lambda) {
-  Eigen::VectorXd w = pb.unit;
-  for (Eigen::Index i = 0; i < w.size(); ++i) w[i] *= lambda[pb.quantity[static_cast<size_t>(i)]];
-  return w;
-}
 
 Eigen::VectorXd initial_of(const std::vector<ParamSpec>& specs, const Eigen::VectorXd& baseline) {
   Eigen::VectorXd p(static_cast<Eigen::Index>(specs.size()));
@@ -156,9 +152,8 @@ FitResult fit_clusters(const Problem& pb, const Eigen::VectorXd& y, Effect e,
                        const std::vector<ParamSpec>& specs, const Eigen::VectorXd& start,
                        const std::vector<std::vector<int>>& clusters, const Noise& noise,
                        bool multi) {
-  const Eigen::VectorXd w = row_weights(pb, noise.lambda);
   auto residuals = [&](const Eigen::VectorXd& p) {
-    return whitened(pb, y, e, p, clusters, noise.rho, w);
+    return whitened(pb, y, e, p, clusters, noise.rho, noise.w);
   };
   return fit_least_squares(residuals, specs, start, multi, pb.c.fit_control);
 }
@@ -208,16 +203,17 @@ std::vector<int> all_rows(size_t n) {
   return rows;
 }
 
-// -2 log L (profiled over sigma) plus the AICc penalty; log_lambda_sum = sum over rows of
-// ln lambda_q (the Jacobian of the per-quantity scaling); k counts the variances and tau too
-double aicc(double rss_white, double log_det_sum, double log_lambda_sum, int n, int k) {
-  return n * std::log(std::max(rss_white, 1e-300) / n) + log_det_sum - 2.0 * log_lambda_sum +
+// -2 log L (profiled over sigma) plus the AICc penalty; log_w_sum = sum over rows of
+// ln(w_i / unit_i) (the Jacobian of the row scaling, without the constant unit conversion);
+// k counts the noise parameters and tau too
+double aicc(double rss_white, double log_det_sum, double log_w_sum, int n, int k) {
+  return n * std::log(std::max(rss_white, 1e-300) / n) + log_det_sum - 2.0 * log_w_sum +
          2.0 * k + 2.0 * k * (k + 1.0) / (n - k - 1.0);
 }
 
-double log_lambda_sum(const Problem& pb, const Eigen::VectorXd& lambda) {
+double log_w_sum(const Problem& pb, const Eigen::VectorXd& w) {
   double s = 0.0;
-  for (int q : pb.quantity) s += std::log(lambda[q]);
+  for (Eigen::Index i = 0; i < w.size(); ++i) s += std::log(w[i] / pb.unit[i]);
   return s;
 }
 
@@ -225,38 +221,63 @@ double log_lambda_sum(const Problem& pb, const Eigen::VectorXd& lambda) {
 constexpr double kRhoGrid[] = {0.0,  0.05, 0.1,   0.2,   0.5,   1.0,   2.0,    5.0,   10.0,
                                20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0, 5000.0};
 
-// alternations between the fit and the per-quantity variances (converged when no precision
-// ratio moves by more than 1 %; two or three suffice in the tests)
+// alternations between the fit and the noise model (converged when no weight moves by more
+// than 1 %; two or three suffice in the tests)
 constexpr int kNoiseIterations = 5;
 
-// per-quantity precision ratios from the residuals of a fit, with each specimen's random
-// effect (its best linear unbiased prediction) removed
-Eigen::VectorXd precision_ratios(const Problem& pb, const Eigen::VectorXd& pred,
-                                 const Noise& noise) {
-  const Eigen::VectorXd w = row_weights(pb, noise.lambda);
+// fewest measurements of a quantity for which a proportional noise line is fitted
+constexpr int kMinRowsProportional = 20;
+
+// noise parameters per quantity: sigma_q, or a_q and b_q
+int noise_params(const Problem& pb) {
+  return pb.quantities() * (pb.proportional ? 2 : 1);
+}
+
+// row weights from the residuals of a fit, with each specimen's random effect (its best linear
+// unbiased prediction) removed: per quantity the RMS residual, or, with proportional noise,
+// the least-squares line |e| = a + b |f| (a >= 2 % of the sd at the mean |f|, so a zero
+// prediction does not get an infinite weight); all in the first quantity's unit
+Eigen::VectorXd noise_weights(const Problem& pb, const Eigen::VectorXd& pred, const Noise& noise) {
   Eigen::VectorXd resid = pb.y - pred;
   if (noise.rho > 0.0) {
     for (const auto& cl : pb.clusters) {
       double gz = 0.0;
-      for (int i : cl) gz += pb.dg[i] * w[i] * resid[i] * w[i];
-      const double u = noise.rho * gz / (1.0 + noise.rho * cluster_g2(pb, cl, w));
+      for (int i : cl) gz += pb.dg[i] * noise.w[i] * resid[i] * noise.w[i];
+      const double u = noise.rho * gz / (1.0 + noise.rho * cluster_g2(pb, cl, noise.w));
       for (int i : cl) resid[i] -= u * pb.dg[i];
     }
   }
-  std::vector<double> ss(static_cast<size_t>(pb.quantities()), 0.0);
-  std::vector<double> count(ss.size(), 0.0);
-  for (Eigen::Index i = 0; i < resid.size(); ++i) {
-    const size_t q = static_cast<size_t>(pb.quantity[static_cast<size_t>(i)]);
-    ss[q] += resid[i] * pb.unit[i] * resid[i] * pb.unit[i];
-    count[q] += 1.0;
+  const Eigen::Index n = resid.size();
+  Eigen::VectorXd sd(n);
+  for (int q = 0; q < pb.quantities(); ++q) {
+    double s1 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (pb.quantity[static_cast<size_t>(i)] != q) continue;
+      const double x = std::abs(pred[i]) * pb.unit[i], y = std::abs(resid[i]) * pb.unit[i];
+      s1 += 1, sx += x, sy += y, sxx += x * x, sxy += x * y, syy += y * y;
+    }
+    double a = std::sqrt(syy / std::max(s1, 1.0)), b = 0.0;  // homoscedastic: the RMS
+    if (pb.proportional) {
+      const double det = s1 * sxx - sx * sx;
+      b = det > 0.0 ? (s1 * sxy - sx * sy) / det : 0.0;
+      a = (sy - b * sx) / s1;
+      if (b < 0.0) b = 0.0, a = sy / s1;
+      if (a < 0.0) a = 0.0, b = sxy / std::max(sxx, 1e-300);
+      a = std::max(a, 0.02 * (a + b * sx / s1));
+    }
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (pb.quantity[static_cast<size_t>(i)] != q) continue;
+      sd[i] = std::max(a + b * std::abs(pred[i]) * pb.unit[i], 1e-300);
+    }
   }
-  Eigen::VectorXd lambda = Eigen::VectorXd::Ones(pb.quantities());
-  const double s0 = std::max(ss[0] / count[0], 1e-300);
-  for (size_t q = 1; q < ss.size(); ++q) {
-    const double sq = std::max(ss[q] / std::max(count[q], 1.0), 1e-300);
-    lambda[static_cast<Eigen::Index>(q)] = std::clamp(std::sqrt(s0 / sq), 1e-3, 1e3);
+  // scale: the first quantity's mean weight equals its unit conversion (1)
+  Eigen::VectorXd w = sd.cwiseInverse();
+  double mean0 = 0.0, count0 = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (pb.quantity[static_cast<size_t>(i)] == 0) mean0 += w[i], count0 += 1.0;
   }
-  return lambda;
+  w *= count0 / mean0;
+  return w.cwiseProduct(pb.unit).eval();
 }
 
 ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calibrated,
@@ -273,7 +294,7 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
   }
   const auto rows = all_rows(c.measured.rows.size());
   const int n = static_cast<int>(rows.size());
-  const int k = static_cast<int>(m.specs.size()) + pb.quantities() + (pb.random_effect ? 1 : 0);
+  const int k = static_cast<int>(m.specs.size()) + noise_params(pb) + (pb.random_effect ? 1 : 0);
   if (n - k - 1 <= 0) {
     throw InputError(c.measured.source + ": rows " + std::to_string(c.measured.rows.front().row) +
                      "-" + std::to_string(c.measured.rows.back().row) + ", column " +
@@ -285,18 +306,18 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
   // alternate: fit at the current precision ratios (multi-start at rho = 0 the first time,
   // then profile the specimen variance ratio), re-estimate the ratios from the residuals;
   // keep the (params, noise) with the lowest AICc, an exact likelihood value at each step
-  Noise noise{Eigen::VectorXd::Ones(pb.quantities()), 0.0};
+  Noise noise{pb.unit, 0.0};
   Noise best_noise = noise;
   FitResult best;
   m.aicc = std::numeric_limits<double>::infinity();
   Eigen::VectorXd start = initial_of(m.specs, calibrated);
   for (int it = 0; it < kNoiseIterations; ++it) {
-    const Eigen::VectorXd w = row_weights(pb, noise.lambda);
-    const double log_lambda = log_lambda_sum(pb, noise.lambda);
-    Noise at{noise.lambda, 0.0};
+    const Eigen::VectorXd& w = noise.w;
+    const double log_w = log_w_sum(pb, w);
+    Noise at{w, 0.0};
     FitResult fit = fit_clusters(pb, pb.y, e, m.specs, start, pb.clusters, at,
                                  opt.multi_start && it == 0);
-    double fit_aicc = aicc(fit.rss, 0.0, log_lambda, n, k);
+    double fit_aicc = aicc(fit.rss, 0.0, log_w, n, k);
     double fit_rho = 0.0;
     if (pb.random_effect) {
       double g2_mean = 0.0;
@@ -308,7 +329,7 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
         if (s == 0.0) continue;
         at.rho = s / g2_mean;
         const FitResult fr = fit_clusters(pb, pb.y, e, m.specs, warm, pb.clusters, at, false);
-        const double a = aicc(fr.rss, log_det(pb, pb.clusters, at.rho, w), log_lambda, n, k);
+        const double a = aicc(fr.rss, log_det(pb, pb.clusters, at.rho, w), log_w, n, k);
         warm = fr.params;
         if (a < fit_aicc) {
           fit_aicc = a;
@@ -323,10 +344,10 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
       best = fit;
       best_noise = noise;
     }
-    if (pb.quantities() == 1) break;
-    const Eigen::VectorXd lambda = precision_ratios(pb, predict(pb, e, fit.params, rows), noise);
-    const double moved = (lambda.array().log() - noise.lambda.array().log()).abs().maxCoeff();
-    noise.lambda = lambda;
+    if (pb.quantities() == 1 && !pb.proportional) break;
+    const Eigen::VectorXd w_new = noise_weights(pb, predict(pb, e, fit.params, rows), noise);
+    const double moved = (w_new.array().log() - noise.w.array().log()).abs().maxCoeff();
+    noise.w = w_new;
     start = fit.params;
     if (moved < 0.01) break;
   }
@@ -337,12 +358,16 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
   m.rmse = score(pb, m.predictions);
   {
     // profiled noise sd per quantity, in the quantity's own unit
-    const Eigen::VectorXd w = row_weights(pb, best_noise.lambda);
+    // (the RMS over each quantity's rows of the modelled sd)
     const double sigma = std::sqrt(best.rss / n);
     m.noise_sd.assign(static_cast<size_t>(pb.quantities()), 0.0);
+    std::vector<double> count(m.noise_sd.size(), 0.0);
     for (Eigen::Index i = 0; i < pb.y.size(); ++i) {
-      m.noise_sd[static_cast<size_t>(pb.quantity[static_cast<size_t>(i)])] = sigma / w[i];
+      const size_t q = static_cast<size_t>(pb.quantity[static_cast<size_t>(i)]);
+      m.noise_sd[q] += std::pow(sigma / best_noise.w[i], 2);
+      count[q] += 1.0;
     }
+    for (size_t q = 0; q < count.size(); ++q) m.noise_sd[q] = std::sqrt(m.noise_sd[q] / count[q]);
   }
   // held-out: refit on each fold's training rows, warm-started at the full-data optimum, with
   // the full-data noise model
@@ -465,6 +490,9 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
     pb.quantity.push_back(index[rows[i].quantity]);
   }
   res.weights = pb.unit;
+  // a noise line a + b |f| needs enough residuals per quantity; with fewer, one sd each
+  pb.proportional = c.proportional_noise;
+  for (const auto& [q, n] : count) pb.proportional = pb.proportional && n >= kMinRowsProportional;
 
   // specimens: clusters of rows; without them every row is its own cluster
   std::map<std::string, std::vector<int>> by_specimen;

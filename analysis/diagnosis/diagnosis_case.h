@@ -65,6 +65,9 @@ struct DiagnosisCase {
   std::string split_rule;              // e.g. "leave-one-specimen-out"
   std::vector<Fold> folds;             // the held-out split rule, applied
   FitControl fit_control;              // iteration cap of every fit (simulation-based cases)
+  bool proportional_noise = false;     // measurement sd grows with the value, a + b |value|
+                                       // per quantity (wear volume and depth); else one sd
+                                       // per quantity (kinematics: AP, IE)
 
   // effect parameter specs for this case (bounds, starts); default: effect_info(e).params
   std::function<std::vector<ParamSpec>(Effect)> effect_params;

@@ -208,6 +208,9 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
     p_lo = std::min(p_lo, t.mean_pressure()), p_hi = std::max(p_hi, t.mean_pressure());
     cs_lo = std::min(cs_lo, t.mean_cross_shear()), cs_hi = std::max(cs_hi, t.mean_cross_shear());
   }
+  // wear is measured gravimetrically or by profilometry: an absolute error plus a part
+  // proportional to the amount (fluid uptake, soak-control correction, calibration)
+  c.proportional_noise = true;
   c.candidates = {Effect::running_in};
   if (p_hi > 1.05 * p_lo) c.candidates.push_back(Effect::pressure_dependent_wear);
   if (cs_hi > 1.10 * cs_lo && cs_hi > 0.0) c.candidates.push_back(Effect::cross_shear);

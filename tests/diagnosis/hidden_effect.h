@@ -9,7 +9,7 @@
 // detectability:
 //   running_in: extra volume 8-30 % of the 200k-cycle Archard volume (Hussin 2024: about
 //               16 %), decay constant 5 000-20 000 cycles
-//   pressure_dependent_wear: alpha 0.5-1.5 (1 = contact-area law)
+//   pressure_dependent_wear: alpha 0.7-1.5 (1 = contact-area law)
 //   creep: phi 0.3-1.0 of the elastic penetration, tau 0.5-3 h
 // Scatter: k of each specimen lognormal with 5 % CV; volume noise 0.02 mm^3 + 1 %, depth noise
 // 2 um + 2 % (one standard deviation).

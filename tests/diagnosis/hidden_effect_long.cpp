@@ -10,9 +10,13 @@
 #include <doctest/doctest.h>
 
 #include <cstdlib>
+#include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 
+#include "tests/diagnosis/hidden_effect.h"
 #include "tests/diagnosis/identification.h"
 
 using kneesim::test::kMinGain;
@@ -69,4 +73,33 @@ TEST_CASE("sweep" * doctest::skip()) {
   report(t, depth);
   CHECK(t.correct == t.runs);
   CHECK(t.low_gain == 0);
+}
+
+// Writes a synthetic data set as a `kneesim diagnose bor` CSV (skipped by default); the creep
+// example of docs/diagnosis.md is
+//   KNEESIM_EXAMPLE_CSV=creep42.csv KNEESIM_EXAMPLE_EFFECT=creep KNEESIM_EXAMPLE_SEED=42
+//   build/tests/diagnosis/test_diagnosis_long -tc="write example" --no-skip
+TEST_CASE("write example" * doctest::skip()) {
+  const char* path = std::getenv("KNEESIM_EXAMPLE_CSV");
+  REQUIRE(path != nullptr);
+  const char* effect = std::getenv("KNEESIM_EXAMPLE_EFFECT");
+  const auto s = kneesim::test::make_synthetic_bor(
+      kneesim::diagnosis::parse_effect(effect ? effect : "creep", "KNEESIM_EXAMPLE_EFFECT"),
+      static_cast<std::uint64_t>(env_long("KNEESIM_EXAMPLE_SEED", 42)));
+  // one line per specimen and cycle count: volume rows first, then the depth rows in the
+  // same order (hidden_effect.cpp)
+  std::map<std::tuple<std::string, std::string, double>, std::pair<double, double>> cells;
+  for (const auto& m : s.data.rows) {
+    auto& c = cells[{m.group, m.specimen, m.x}];
+    (m.quantity == "volume_mm3" ? c.first : c.second) = m.value;
+  }
+  std::ofstream out(path);
+  out << "# synthetic block-on-ring data, tests/diagnosis/hidden_effect.h, " << s.data.source;
+  for (const auto& [name, value] : s.params) out << ", " << name << " " << value;
+  out << "\nload_N,specimen,cycles,volume_mm3,depth_mm\n";
+  for (const auto& [key, v] : cells) {
+    out << std::strtod(std::get<0>(key).c_str(), nullptr) << "," << std::get<1>(key) << ","
+        << std::get<2>(key) << "," << v.first << "," << v.second << "\n";
+  }
+  CHECK(out.good());
 }

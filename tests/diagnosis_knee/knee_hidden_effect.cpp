@@ -10,9 +10,10 @@ namespace {
 
 using diagnosis::Effect;
 
-const char* const kConditions[] = {"iso", "low_ie", "high_load"};
+// the experiment: the ISO gait, a low IE torque (cross-shear contrast) and two load levels
+// bracketing the ISO load (pressure contrast) (knee_conditions.toml), kKneeSpecimens each
+const char* const kConditions[] = {"iso", "low_ie", "high_load", "low_load"};
 const double kCycles[] = {2.5e5, 5e5, 1e6, 1.5e6, 2e6, 3e6};
-constexpr int kSpecimens = 3;
 
 double uniform(std::mt19937_64& rng, double a, double b) {
   return std::uniform_real_distribution<double>(a, b)(rng);
@@ -41,7 +42,8 @@ const diagnosis::KneeWearTables& knee_test_tables() {
   return tables;
 }
 
-KneeSynthetic make_synthetic_knee_wear(Effect effect, std::uint64_t seed, bool with_depth) {
+KneeSynthetic make_synthetic_knee_wear(Effect effect, std::uint64_t seed, bool with_depth,
+                                       int specimens) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   const auto& tables = knee_test_tables();
@@ -83,7 +85,7 @@ KneeSynthetic make_synthetic_knee_wear(Effect effect, std::uint64_t seed, bool w
   int row = 2;
   std::vector<diagnosis::Measurement> depth_rows;
   for (const char* c : kConditions) {
-    for (int sp = 0; sp < kSpecimens; ++sp) {
+    for (int sp = 0; sp < specimens; ++sp) {
       diagnosis::KneeWearParams ps = p;
       ps.k = p.k * std::exp(0.05 * normal(rng));
       const auto rates = tables.at(c)->rates(ps);

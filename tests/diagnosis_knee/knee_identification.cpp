@@ -16,16 +16,44 @@ void tally(KneeTally& t, diagnosis::Effect truth, std::uint64_t seed,
   ++t.runs;
   t.max_seconds = std::max(t.max_seconds, r.seconds);
   t.total_seconds += r.seconds;
-  char line[160];
-  std::snprintf(line, sizeof line, "%s seed %llu: named %s, gain %.3f, %.2f s\n",
-                std::string(diagnosis::effect_name(truth)).c_str(),
+  const double aicc_none = r.candidates.front().aicc;
+  double truth_daicc = 0.0;
+  for (const auto& m : r.candidates) {
+    if (m.effect == diagnosis::Effect::none) continue;
+    const double ratio = m.heldout_rmse / r.candidates.front().heldout_rmse;
+    if (truth == diagnosis::Effect::none) {
+      t.clean_min_daicc = std::min(t.clean_min_daicc, m.aicc - aicc_none);
+      t.clean_min_heldout_ratio = std::min(t.clean_min_heldout_ratio, ratio);
+    }
+    if (m.effect == truth) {
+      truth_daicc = m.aicc - aicc_none;
+      t.effect_max_daicc = std::max(t.effect_max_daicc, truth_daicc);
+      t.effect_max_heldout_ratio = std::max(t.effect_max_heldout_ratio, ratio);
+    }
+  }
+  char line[200];
+  std::snprintf(line, sizeof line, "%s seed %llu: named %s, gain %.3f, dAICc of the truth %.1f, "
+                "%.2f s\n", std::string(diagnosis::effect_name(truth)).c_str(),
                 static_cast<unsigned long long>(seed),
-                std::string(diagnosis::effect_name(r.effect())).c_str(), r.gain, r.seconds);
+                std::string(diagnosis::effect_name(r.effect())).c_str(), r.gain, truth_daicc,
+                r.seconds);
   t.gains += line;
   if (r.effect() == truth) {
     ++t.correct;
   } else {
     t.failures += line;
+    for (const auto& m : r.candidates) {
+      std::snprintf(line, sizeof line, "    %s: dAICc %.1f, held-out RMSE / none's %.3f,",
+                    std::string(diagnosis::effect_name(m.effect)).c_str(), m.aicc - aicc_none,
+                    m.heldout_rmse / r.candidates.front().heldout_rmse);
+      t.failures += line;
+      for (Eigen::Index j = 0; j < m.params.size(); ++j) {
+        std::snprintf(line, sizeof line, " %s %.4g", m.specs[static_cast<size_t>(j)].name.c_str(),
+                      m.params[j]);
+        t.failures += line;
+      }
+      t.failures += "\n";
+    }
   }
   if (truth == diagnosis::Effect::none && r.effect() != diagnosis::Effect::none) ++t.false_positives;
   if (truth != diagnosis::Effect::none && r.effect() != diagnosis::Effect::none &&
@@ -41,14 +69,16 @@ void tally(KneeTally& t, diagnosis::Effect truth, std::uint64_t seed,
 }  // namespace
 
 KneeTally run_knee_wear_identification(const std::vector<diagnosis::Effect>& effects,
-                                       std::uint64_t first_seed, int seeds, bool with_depth) {
+                                       std::uint64_t first_seed, int seeds, bool with_depth,
+                                       int specimens) {
   KneeTally t;
   diagnosis::DiagnosisOptions opt;
   opt.bootstrap = 0;  // identification only
   for (diagnosis::Effect truth : effects) {
     for (int i = 0; i < seeds; ++i) {
       const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
-      const KneeSynthetic s = make_synthetic_knee_wear(truth, seed, with_depth);
+      const KneeSynthetic s = make_synthetic_knee_wear(truth, seed, with_depth,
+                                                        specimens > 0 ? specimens : kKneeSpecimens);
       const auto c = diagnosis::make_knee_wear_case(s.data, knee_test_tables(), {});
       tally(t, truth, seed, diagnosis::diagnose(c, opt), kKneeWearMinGain);
     }

@@ -1,10 +1,15 @@
 // Long hidden-effect runs of the knee cases (label "long"): 20 seeds per knee-wear effect with
-// depth, 10 without, and 5 per kinematic effect; same requirements as the default suite,
-// except for volume-only data, where a pressure effect shows only through the one
-// high-load condition (26 % higher mean pressure, 3 specimens): there the measured rate is
-// 38 of 40 data sets (the two misses, alpha near the low end, were named "none", never a wrong
-// effect), so the test requires no wrong effect, no false positive and at least 90 %.
+// depth, 10 without, and 5 per kinematic effect; the same requirements as the default suite:
+// the right effect named, no false positive, gain above the threshold. The knee-wear design is
+// knee_hidden_effect.h (four conditions bracketing the ISO load and IE torque, 6 specimens
+// each). With three conditions and 3 specimens, volume-only data identified 38 of 40 (two
+// pressure sets at low alpha named "none"), hence the low-load condition and the specimens;
+// the rates over many more seeds are in docs/diagnosis.md ("knee wear sweep" below).
 #include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <sstream>
+#include <string>
 
 #include "tests/diagnosis_knee/knee_identification.h"
 
@@ -26,9 +31,9 @@ TEST_CASE("knee wear identification over many seeds") {
       {Effect::none, Effect::running_in, Effect::pressure_dependent_wear, Effect::cross_shear},
       18000, 10, false);
   INFO(v.failures);
-  CHECK(v.correct >= 0.9 * v.runs);
-  CHECK(v.wrong_effect == 0);
+  CHECK(v.correct == v.runs);
   CHECK(v.false_positives == 0);
+  CHECK(v.low_gain == 0);
   MESSAGE("knee wear (volume only) " << v.correct << "/" << v.runs << ", smallest gain "
                                      << v.min_gain);
 }
@@ -43,4 +48,43 @@ TEST_CASE("kinematics identification over several seeds") {
   CHECK(t.low_gain == 0);
   MESSAGE("kinematics " << t.correct << "/" << t.runs << ", smallest gain " << t.min_gain
                         << ", total " << t.total_seconds << " s");
+}
+
+namespace {
+
+long env_long(const char* name, long fallback) {
+  const char* v = std::getenv(name);
+  return v ? std::strtol(v, nullptr, 10) : fallback;
+}
+
+}  // namespace
+
+// Measures the knee-wear rates over other seed ranges (skipped by default), e.g.
+//   KNEESIM_SWEEP_FIRST_SEED=400000 KNEESIM_SWEEP_SEEDS=100 KNEESIM_SWEEP_DEPTH=0
+//   KNEESIM_SWEEP_EFFECTS=none,pressure_dependent_wear
+//   build/tests/diagnosis_knee/test_diagnosis_knee_long -tc="knee wear sweep" --no-skip
+TEST_CASE("knee wear sweep" * doctest::skip()) {
+  const auto first = static_cast<std::uint64_t>(env_long("KNEESIM_SWEEP_FIRST_SEED", 400000));
+  const int seeds = static_cast<int>(env_long("KNEESIM_SWEEP_SEEDS", 20));
+  const bool depth = env_long("KNEESIM_SWEEP_DEPTH", 0) != 0;
+  std::vector<Effect> effects;
+  const char* names = std::getenv("KNEESIM_SWEEP_EFFECTS");
+  std::stringstream ss(names ? names : "none,running_in,pressure_dependent_wear,cross_shear");
+  for (std::string n; std::getline(ss, n, ',');) {
+    effects.push_back(kneesim::diagnosis::parse_effect(n, "KNEESIM_SWEEP_EFFECTS"));
+  }
+  const int specimens = static_cast<int>(env_long("KNEESIM_SWEEP_SPECIMENS", 0));
+  const auto t = run_knee_wear_identification(effects, first, seeds, depth, specimens);
+  MESSAGE(t.failures);
+  MESSAGE("knee wear (depth " << depth << ") " << t.correct << "/" << t.runs
+                              << ", false positives " << t.false_positives << ", wrong effect "
+                              << t.wrong_effect << ", smallest gain " << t.min_gain
+                              << ", lowest dAICc on clean data " << t.clean_min_daicc
+                              << ", highest dAICc of a true effect " << t.effect_max_daicc
+                              << ", lowest held-out ratio on clean data "
+                              << t.clean_min_heldout_ratio
+                              << ", highest held-out ratio of a true effect "
+                              << t.effect_max_heldout_ratio << ", slowest " << t.max_seconds << " s, total " << t.total_seconds
+                              << " s");
+  CHECK(t.correct == t.runs);
 }

@@ -130,7 +130,7 @@ DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
                         1e-5, 4.1e-10, true, {}}};
   // wear is measured gravimetrically or by profilometry: an absolute error plus a part
   // proportional to the amount (fluid uptake, soak-control correction, calibration)
-  c.proportional_noise = true;
+  c.noise_model = NoiseModel::proportional;
   c.candidates = {Effect::running_in, Effect::pressure_dependent_wear};
   if (has_depth) c.candidates.push_back(Effect::creep);
 

@@ -71,7 +71,8 @@ struct Problem {
   std::vector<std::vector<int>> clusters;  // specimens (rows), or one row each
   Eigen::VectorXd dg;                      // random-effect direction per row (unweighted)
   bool random_effect = false;              // specimens given: fit tau too
-  bool proportional = false;               // sd a_q + b_q |f| (case flag, enough rows)
+  NoiseModel noise = NoiseModel::per_quantity;  // the case's, with the row-count fallback
+  Eigen::VectorXd fixed_w;                 // row weights shared by every candidate, or empty
   int quantities() const { return static_cast<int>(quantity_names.size()); }
 };
 
@@ -180,6 +181,10 @@ std::vector<std::vector<int>> clusters_of(const Problem& pb, const std::vector<i
 // unit conversion, and a quantity with a larger spread does not dominate. For one quantity it
 // is the plain RMSE.
 double score(const Problem& pb, const Eigen::VectorXd& pred) {
+  if (pb.noise == NoiseModel::pooled) {  // one sd: the RMSE of the converted residuals
+    return std::sqrt((pred - pb.y).cwiseProduct(pb.unit).squaredNorm() /
+                     static_cast<double>(pred.size()));
+  }
   std::vector<double> ss(static_cast<size_t>(pb.quantities()), 0.0);
   std::vector<double> count(ss.size(), 0.0);
   for (Eigen::Index i = 0; i < pred.size(); ++i) {
@@ -221,6 +226,10 @@ double log_w_sum(const Problem& pb, const Eigen::VectorXd& w) {
 constexpr double kRhoGrid[] = {0.0,  0.05, 0.1,   0.2,   0.5,   1.0,   2.0,    5.0,   10.0,
                                20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0, 5000.0};
 
+// golden-section steps refining the specimen variance ratio after the grid (ln rho to within
+// about 0.03)
+constexpr int kRhoRefinements = 8;
+
 // alternations between the fit and the noise model (converged when no weight moves by more
 // than 1 %; two or three suffice in the tests)
 constexpr int kNoiseIterations = 5;
@@ -230,7 +239,12 @@ constexpr int kMinRowsProportional = 20;
 
 // noise parameters per quantity: sigma_q, or a_q and b_q
 int noise_params(const Problem& pb) {
-  return pb.quantities() * (pb.proportional ? 2 : 1);
+  switch (pb.noise) {
+    case NoiseModel::pooled: return 1;
+    case NoiseModel::per_quantity: return pb.quantities();
+    case NoiseModel::proportional: return 2 * pb.quantities();
+  }
+  return pb.quantities();
 }
 
 // row weights from the residuals of a fit, with each specimen's random effect (its best linear
@@ -257,7 +271,7 @@ Eigen::VectorXd noise_weights(const Problem& pb, const Eigen::VectorXd& pred, co
       s1 += 1, sx += x, sy += y, sxx += x * x, sxy += x * y, syy += y * y;
     }
     double a = std::sqrt(syy / std::max(s1, 1.0)), b = 0.0;  // homoscedastic: the RMS
-    if (pb.proportional) {
+    if (pb.noise == NoiseModel::proportional) {
       const double det = s1 * sxx - sx * sx;
       b = det > 0.0 ? (s1 * sxy - sx * sy) / det : 0.0;
       a = (sy - b * sx) / s1;
@@ -306,7 +320,7 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
   // alternate: fit at the current precision ratios (multi-start at rho = 0 the first time,
   // then profile the specimen variance ratio), re-estimate the ratios from the residuals;
   // keep the (params, noise) with the lowest AICc, an exact likelihood value at each step
-  Noise noise{pb.unit, 0.0};
+  Noise noise{pb.fixed_w.size() ? pb.fixed_w : pb.unit, 0.0};
   Noise best_noise = noise;
   FitResult best;
   m.aicc = std::numeric_limits<double>::infinity();
@@ -325,9 +339,8 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
         g2_mean += cluster_g2(pb, cl, w) / static_cast<double>(pb.clusters.size());
       }
       Eigen::VectorXd warm = fit.params;
-      for (double s : kRhoGrid) {
-        if (s == 0.0) continue;
-        at.rho = s / g2_mean;
+      auto try_rho = [&](double rho) {
+        at.rho = rho;
         const FitResult fr = fit_clusters(pb, pb.y, e, m.specs, warm, pb.clusters, at, false);
         const double a = aicc(fr.rss, log_det(pb, pb.clusters, at.rho, w), log_w, n, k);
         warm = fr.params;
@@ -335,6 +348,26 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
           fit_aicc = a;
           fit = fr;
           fit_rho = at.rho;
+        }
+        return a;
+      };
+      for (double s : kRhoGrid) {
+        if (s > 0.0) try_rho(s / g2_mean);
+      }
+      // refine ln rho by golden section between the best grid point's neighbours: a grid
+      // step of 2-2.5x leaves up to about n_specimens/8 of -2 log L on the table, at random
+      // for each candidate, which would add noise to dAICc
+      if (fit_rho > 0.0) {
+        double lo = std::log(fit_rho / 2.5), hi = std::log(fit_rho * 2.5);
+        const double r = 0.5 * (std::sqrt(5.0) - 1.0);
+        double x1 = hi - r * (hi - lo), x2 = lo + r * (hi - lo);
+        double f1 = try_rho(std::exp(x1)), f2 = try_rho(std::exp(x2));
+        for (int it = 0; it < kRhoRefinements; ++it) {
+          if (f1 < f2) {
+            hi = x2, x2 = x1, f2 = f1, x1 = hi - r * (hi - lo), f1 = try_rho(std::exp(x1));
+          } else {
+            lo = x1, x1 = x2, f1 = f2, x2 = lo + r * (hi - lo), f2 = try_rho(std::exp(x2));
+          }
         }
       }
     }
@@ -344,7 +377,10 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
       best = fit;
       best_noise = noise;
     }
-    if (pb.quantities() == 1 && !pb.proportional) break;
+    if (pb.noise == NoiseModel::pooled || pb.fixed_w.size() > 0 ||
+        (pb.quantities() == 1 && pb.noise == NoiseModel::per_quantity)) {
+      break;
+    }
     const Eigen::VectorXd w_new = noise_weights(pb, predict(pb, e, fit.params, rows), noise);
     const double moved = (w_new.array().log() - noise.w.array().log()).abs().maxCoeff();
     noise.w = w_new;
@@ -491,8 +527,13 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   }
   res.weights = pb.unit;
   // a noise line a + b |f| needs enough residuals per quantity; with fewer, one sd each
-  pb.proportional = c.proportional_noise;
-  for (const auto& [q, n] : count) pb.proportional = pb.proportional && n >= kMinRowsProportional;
+  pb.noise = c.noise_model;
+  for (const auto& [q, n] : count) {
+    if (pb.noise == NoiseModel::proportional && n < kMinRowsProportional) {
+      pb.noise = NoiseModel::per_quantity;
+    }
+  }
+  res.noise_model = pb.noise;
 
   // specimens: clusters of rows; without them every row is its own cluster
   std::map<std::string, std::vector<int>> by_specimen;
@@ -517,6 +558,30 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
     const Eigen::VectorXd none;
     const Eigen::VectorXd up = c.predict(Effect::none, b2, none, all_rows(rows.size()));
     pb.dg = (up - res.baseline.predictions) / std::log(1.01);
+  }
+  // proportional noise with specimens: the noise line of each quantity is a property of the
+  // measurement, so it is estimated once, from the pure error (each specimen's measurements
+  // about its own scaled baseline curve, which absorbs any level difference between specimens
+  // and conditions), and shared by every candidate; only the common sigma is profiled per
+  // candidate. Estimated per candidate from its own residuals instead, the line differed
+  // between candidates and added up to 5 to a clean data set's dAICc.
+  if (pb.noise == NoiseModel::proportional && pb.random_effect) {
+    Eigen::VectorXd own = res.baseline.predictions;
+    for (const auto& cl : pb.clusters) {
+      for (int q = 0; q < pb.quantities(); ++q) {
+        double yf = 0.0, ff = 0.0;
+        for (int i : cl) {
+          if (pb.quantity[static_cast<size_t>(i)] != q) continue;
+          yf += pb.y[i] * own[i];
+          ff += own[i] * own[i];
+        }
+        const double scale = ff > 0.0 ? yf / ff : 1.0;
+        for (int i : cl) {
+          if (pb.quantity[static_cast<size_t>(i)] == q) own[i] *= scale;
+        }
+      }
+    }
+    pb.fixed_w = noise_weights(pb, own, Noise{pb.unit, 0.0});
   }
   std::vector<Effect> effects = {Effect::none};
   effects.insert(effects.end(), c.candidates.begin(), c.candidates.end());

@@ -4,11 +4,13 @@
 // seeded residual bootstrap of the chosen fit; and the gain
 // 1 - heldout_rmse_extended / heldout_rmse_baseline.
 //
-// Noise model: one variance per measured quantity (volume and depth; AP and IE), profiled with
-// every fit, in AICc and in the held-out score alike. RMSEs are the count-weighted geometric
-// mean of the per-quantity RMSEs (the same Gaussian likelihood), printed in the unit of the
-// first quantity in the data (other quantities converted by the ratio of their measured RMS
-// values, which cancels in every comparison); for one quantity it is the plain RMSE.
+// Noise model (DiagnosisCase::noise_model): one sd per measured quantity, or a sd a + b |f|
+// per quantity for wear data, profiled with every fit, in AICc and in the held-out score
+// alike: RMSEs are the count-weighted geometric mean of the per-quantity RMSEs (the same
+// Gaussian likelihood), printed in the unit of the first quantity in the data (other
+// quantities converted by the ratio of their measured RMS values, which cancels in every
+// comparison); for one quantity it is the plain RMSE. A pooled case (kinematics: residuals are
+// model discrepancy) fits one sd to the converted residuals, and its RMSE is their RMS.
 //
 // Specimens: when the data name them, every fit carries a specimen random effect (the
 // specimen's wear factor scatters multiplicatively), whitened exactly, with its variance ratio
@@ -56,6 +58,7 @@ struct ModelFit {
 struct DiagnosisResult {
   std::string rmse_unit;            // quantity whose unit the RMSEs carry, e.g. "volume_mm3"
   std::vector<std::string> quantities;  // measured quantities, first = rmse_unit
+  NoiseModel noise_model = NoiseModel::per_quantity;  // the residual model used
   Eigen::VectorXd weights;          // unit conversion into rmse_unit per measurement [-]
   ModelFit baseline;                // practitioner's calibration, not refitted
   std::vector<ModelFit> candidates; // "none" first, then the case's candidates

@@ -54,6 +54,18 @@ struct CurvePoint {
   double value = 0.0;    // model value [quantity unit]
 };
 
+// The residual model of a case's fits (diagnose.h).
+//   pooled: one sd for all rows, quantities converted into the first one's unit by the ratio of
+//     their measured RMS values; for residuals that are model discrepancy rather than
+//     measurement noise (one measured kinematics curve against a rig model: AP and IE are
+//     put on an equal footing by their magnitude, and the quantity the model misses worst is
+//     not down-weighted for it)
+//   per_quantity: one sd per measured quantity, profiled
+//   proportional: per quantity a sd a + b |value|, profiled (repeated wear measurements: a
+//     balance or profilometer error plus a part proportional to the amount); falls back to
+//     per_quantity when a quantity has fewer than 20 measurements
+enum class NoiseModel { pooled, per_quantity, proportional };
+
 struct DiagnosisCase {
   std::string name;                    // case name, e.g. "bor"
   MeasuredData measured;
@@ -65,9 +77,7 @@ struct DiagnosisCase {
   std::string split_rule;              // e.g. "leave-one-specimen-out"
   std::vector<Fold> folds;             // the held-out split rule, applied
   FitControl fit_control;              // iteration cap of every fit (simulation-based cases)
-  bool proportional_noise = false;     // measurement sd grows with the value, a + b |value|
-                                       // per quantity (wear volume and depth); else one sd
-                                       // per quantity (kinematics: AP, IE)
+  NoiseModel noise_model = NoiseModel::per_quantity;  // see NoiseModel
 
   // effect parameter specs for this case (bounds, starts); default: effect_info(e).params
   std::function<std::vector<ParamSpec>(Effect)> effect_params;

@@ -90,6 +90,9 @@ DiagnosisCase make_kinematics_case(MeasuredData data, std::shared_ptr<Kinematics
       {"ap_offset_mm", "AP offset of the measured reference frame [mm]", -30.0, 30.0, 0.0, false, {}},
       {"ie_offset_deg", "IE offset of the measured reference frame [deg]", -45.0, 45.0, 0.0, false, {}}};
   c.specimen_param = 0;
+  // one measured curve against a rig model: the residuals are discrepancy, not measurement
+  // noise, so AP and IE share one sd in RMS-ratio units (diagnosis_case.h, NoiseModel)
+  c.noise_model = NoiseModel::pooled;
   c.candidates = {Effect::friction};
   bool has_restraint = sim->config().restraint != "none";
   if (has_restraint) c.candidates.push_back(Effect::restraint);

@@ -210,7 +210,7 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
   }
   // wear is measured gravimetrically or by profilometry: an absolute error plus a part
   // proportional to the amount (fluid uptake, soak-control correction, calibration)
-  c.proportional_noise = true;
+  c.noise_model = NoiseModel::proportional;
   c.candidates = {Effect::running_in};
   if (p_hi > 1.05 * p_lo) c.candidates.push_back(Effect::pressure_dependent_wear);
   if (cs_hi > 1.10 * cs_lo && cs_hi > 0.0) c.candidates.push_back(Effect::cross_shear);

@@ -118,8 +118,8 @@ std::string diagnosis_markdown(const DiagnosisCase& c, const DiagnosisResult& r)
     }
     md += "| " + e.specs[i].name + " | " + num(e.params[k]) + " | " + ci + " |\n";
   }
-  if (r.quantities.size() > 1) {
-    md += "\nProfiled noise sd per quantity:";
+  if (r.quantities.size() > 1 && r.noise_model != NoiseModel::pooled) {
+    md += "\nProfiled noise sd per quantity (RMS over its measurements):";
     for (size_t q = 0; q < r.quantities.size() && q < e.noise_sd.size(); ++q) {
       md += std::string(q ? "," : "") + " " + r.quantities[q] + " " + num(e.noise_sd[q]);
     }
@@ -142,10 +142,23 @@ std::string diagnosis_markdown(const DiagnosisCase& c, const DiagnosisResult& r)
   }
   md += "\nSelection: a candidate must lower AICc by more than the threshold and the held-out "
         "RMSE by more than the threshold fraction against `none` (the baseline refitted by "
-        "least squares); the lowest held-out RMSE among those wins. Noise: one variance per measured "
-        "quantity, profiled in every fit; with several quantities an RMSE is the "
-        "count-weighted geometric mean of the per-quantity RMSEs (the same likelihood), each "
-        "converted into " + r.rmse_unit + " by the ratio of measured RMS values.\n";
+        "least squares); the lowest held-out RMSE among those wins. ";
+  switch (r.noise_model) {
+    case NoiseModel::pooled:
+      md += "Noise: one sd for all measurements, other quantities converted into " +
+            r.rmse_unit + " by the ratio of measured RMS values (the residuals are model "
+            "discrepancy, not measurement noise).\n";
+      break;
+    case NoiseModel::per_quantity:
+    case NoiseModel::proportional:
+      md += std::string("Noise: per measured quantity ") +
+            (r.noise_model == NoiseModel::proportional ? "a sd a + b |value|"
+                                                       : "one sd") +
+            ", profiled in every fit; with several quantities an RMSE is the count-weighted "
+            "geometric mean of the per-quantity RMSEs (the same likelihood), each converted "
+            "into " + r.rmse_unit + " by the ratio of measured RMS values.\n";
+      break;
+  }
   return md;
 }
 

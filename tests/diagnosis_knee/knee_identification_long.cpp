@@ -8,8 +8,11 @@
 #include <doctest/doctest.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <sstream>
 #include <string>
+
+#include "tests/diagnosis_knee/knee_hidden_effect.h"
 
 #include "tests/diagnosis_knee/knee_identification.h"
 
@@ -87,4 +90,27 @@ TEST_CASE("knee wear sweep" * doctest::skip()) {
                               << t.effect_max_heldout_ratio << ", slowest " << t.max_seconds << " s, total " << t.total_seconds
                               << " s");
   CHECK(t.correct == t.runs);
+}
+
+// Writes a synthetic knee-wear data set as a `kneesim diagnose knee-wear` CSV (skipped by
+// default), e.g. KNEESIM_EXAMPLE_CSV=kw.csv KNEESIM_EXAMPLE_EFFECT=none
+// KNEESIM_EXAMPLE_SEED=510286 build/tests/diagnosis_knee/test_diagnosis_knee_long
+// -tc="write knee example" --no-skip
+TEST_CASE("write knee example" * doctest::skip()) {
+  const char* path = std::getenv("KNEESIM_EXAMPLE_CSV");
+  REQUIRE(path != nullptr);
+  const char* effect = std::getenv("KNEESIM_EXAMPLE_EFFECT");
+  const auto s = make_synthetic_knee_wear(
+      kneesim::diagnosis::parse_effect(effect ? effect : "none", "KNEESIM_EXAMPLE_EFFECT"),
+      static_cast<std::uint64_t>(env_long("KNEESIM_EXAMPLE_SEED", 1)),
+      env_long("KNEESIM_EXAMPLE_DEPTH", 0) != 0);
+  std::ofstream out(path);
+  out << "# synthetic knee wear, tests/diagnosis_knee/knee_hidden_effect.h, " << s.data.source;
+  for (const auto& [name, value] : s.params) out << ", " << name << " " << value;
+  out << "\ncondition,specimen,cycles,quantity,value\n";
+  for (const auto& m : s.data.rows) {
+    out << m.group << "," << m.specimen << "," << m.x << "," << m.quantity << "," << m.value
+        << "\n";
+  }
+  CHECK(out.good());
 }

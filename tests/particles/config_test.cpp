@@ -58,3 +58,15 @@ TEST_CASE("particle config: bad input names file, line and key") {
   const std::string pair = error_of(tmp.write("d.toml", "pair = \"steel-wood\"\n"));
   CHECK(pair.find("steel-wood") != std::string::npos);
 }
+
+TEST_CASE("particle config: the lay (peklenik_gamma) overrides the preset and is range-checked") {
+  TempDir tmp;
+  const pt::ParticleModelConfig c =
+      pt::read_particle_config(tmp.write("g.toml", "[softer]\npeklenik_gamma = 1\n"));
+  const pt::ParticleModelConfig preset = pt::make_pair_config(pt::parse_pair("steel-steel", "t"));
+  CHECK(c.softer.roughness.gamma == 1.0);
+  CHECK(c.harder.roughness.gamma == preset.harder.roughness.gamma);
+  const std::string bad = error_of(tmp.write("h.toml", "[harder]\npeklenik_gamma = 0\n"));
+  CHECK(bad.find("h.toml:2") != std::string::npos);
+  CHECK(bad.find("peklenik_gamma") != std::string::npos);
+}

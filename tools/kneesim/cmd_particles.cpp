@@ -64,6 +64,7 @@ nlohmann::json body_json(const pt::BodySpec& b) {
           {"kurtosis", b.roughness.kurtosis},
           {"correlation_length_nm", b.roughness.correlation_length * 1e9},
           {"lambda_s_nm", b.roughness.lambda_s * 1e9},
+          {"peklenik_gamma", b.roughness.gamma},
           {"film_thickness_nm", b.elastic.film_thickness * 1e9},
           {"film_E_GPa", b.elastic.film_modulus / 1e9},
           {"surface_csv", b.surface_csv}};

@@ -86,6 +86,7 @@ void read_body(const Reader& r, const std::string& s, BodySpec& b) {
   r.set(s, "skewness", b.roughness.skewness, 1.0, -5, 5);
   r.set(s, "kurtosis", b.roughness.kurtosis, 1.0, 1.0, 50);
   r.set(s, "correlation_length_nm", b.roughness.correlation_length, 1e-9, 1e-3, kBig);
+  r.set(s, "peklenik_gamma", b.roughness.gamma, 1.0, 1e-3, 1e3);
   r.set(s, "lambda_s_nm", b.roughness.lambda_s, 1e-9, 0.0, 1e9);
   r.set_int(s, "seed", b.roughness.seed, 0, 1e15);
   r.set(s, "film_thickness_nm", b.elastic.film_thickness, 1e-9, 0.0, 1e6);

@@ -6,7 +6,8 @@
 //   [grid]  nx ny dx_nm nz dz_nm refine
 //   [run]   min_iterations max_iterations block slide_cells track_factor steady_tolerance
 //   [harder] / [softer]  E_GPa nu hardness_GPa yield_GPa rq_nm skewness kurtosis
-//            correlation_length_nm lambda_s_nm seed film_thickness_nm film_E_GPa film_nu surface_csv
+//            correlation_length_nm peklenik_gamma lambda_s_nm seed film_thickness_nm film_E_GPa
+//            film_nu surface_csv  (peklenik_gamma: lay ratio, correlation length along x / across)
 //
 // The file is read through the toml++ adapter (tools/io/toml_file.h); unknown keys are errors.
 #pragma once

@@ -122,9 +122,61 @@ SurfaceStats calc_surface_stats(const std::vector<double>& h) {
   return s;
 }
 
+SurfaceGradients calc_surface_gradients(const Grid& grid, const std::vector<double>& h) {
+  const int nx = grid.nx, ny = grid.ny;
+  Fft2 fft(nx, ny);
+  const int nc = fft.nyc();
+  std::vector<Complex> spec(static_cast<long>(nx) * nc);
+  std::vector<double> work(h);
+  fft.forward(work.data(), spec.data(), nx);
+  // Parseval over the half spectrum: columns 0 and ny/2 once, the others twice
+  double sx = 0.0, sy = 0.0, sc = 0.0;
+  for (int ix = 0; ix < nx; ++ix) {
+    const int m = ix <= nx / 2 ? ix : ix - nx;
+    const double qx = (2 * m == nx) ? 0.0 : 2.0 * kPi * m / (nx * grid.dx);
+    for (int iy = 0; iy < nc; ++iy) {
+      const double qy = (2 * iy == ny) ? 0.0 : 2.0 * kPi * iy / (ny * grid.dy);
+      const double w = (iy == 0 || 2 * iy == ny) ? 1.0 : 2.0;
+      const double a2 = std::norm(spec[static_cast<long>(ix) * nc + iy]);
+      sx += w * qx * qx * a2;
+      sy += w * qy * qy * a2;
+      sc += w * 0.25 * (qx * qx + qy * qy) * (qx * qx + qy * qy) * a2;
+    }
+  }
+  const double n2 = double(nx) * ny * double(nx) * ny;
+  return {std::sqrt(sx / n2), std::sqrt(sy / n2), std::sqrt(sc / n2)};
+}
+
+double measure_correlation_length(const Grid& grid, const std::vector<double>& h, bool along_x) {
+  // circular autocorrelation by the Wiener-Khinchin theorem: inverse transform of |H|^2
+  const int nx = grid.nx, ny = grid.ny;
+  Fft2 fft(nx, ny);
+  const int nc = fft.nyc();
+  std::vector<Complex> spec(static_cast<long>(nx) * nc);
+  std::vector<double> acf(h);
+  fft.forward(acf.data(), spec.data(), nx);
+  spec[0] = 0.0;  // mean
+  for (Complex& v : spec) v = std::norm(v);
+  fft.inverse(spec.data(), acf.data(), nx);
+  const int n = along_x ? nx : ny;
+  const double d = along_x ? grid.dx : grid.dy;
+  double prev = 1.0;
+  for (int lag = 1; lag <= n / 2; ++lag) {
+    const double r = (along_x ? acf[static_cast<long>(lag) * ny] : acf[lag]) / acf[0];
+    if (r <= 0.1) return d * (lag - 1 + (prev - 0.1) / (prev - r));
+    prev = r;
+  }
+  return 0.5 * n * d;
+}
+
 std::vector<double> make_rough_surface(const Grid& grid, const SurfaceSpec& spec,
                                        const std::string& source) {
   char buf[256];
+  if (!(spec.gamma > 0.0)) {
+    std::snprintf(buf, sizeof buf, "%s: Peklenik gamma = %g is not allowed; it must be > 0",
+                  source.c_str(), spec.gamma);
+    throw InputError(buf);
+  }
   if (!(spec.rq > 0.0) || !(spec.correlation_length > 0.0)) {
     std::snprintf(buf, sizeof buf,
                   "%s: roughness Rq = %g nm and correlation length = %g nm are not allowed; both "
@@ -145,7 +197,8 @@ std::vector<double> make_rough_surface(const Grid& grid, const SurfaceSpec& spec
   // spectrum: per-mode noise times the square root of the exponential autocorrelation's power
   // spectrum, (1 + (q l)^2)^(-3/2) with l = beta / 2.3, times the lambda_s filter; modes at or
   // beyond a grid's Nyquist index are left out, so a coarser grid holds a subset of the modes
-  const double ell = spec.correlation_length / 2.3;
+  const double ell_x = spec.correlation_length / 2.3;
+  const double ell_y = ell_x / spec.gamma;
   std::vector<Complex> spectrum(static_cast<long>(nx) * nc, Complex(0.0, 0.0));
   for (int ix = 0; ix < nx; ++ix) {
     const long m = ix <= nx / 2 ? ix : ix - nx;
@@ -156,7 +209,7 @@ std::vector<double> make_rough_surface(const Grid& grid, const SurfaceSpec& spec
       if (2 * mn >= ny || (mn == 0 && m == 0)) continue;  // Nyquist column, mean
       const double qy = 2.0 * kPi * mn / (ny * grid.dy);
       const double q = std::hypot(qx, qy);
-      const double amp = std::pow(1.0 + q * q * ell * ell, -0.75) *
+      const double amp = std::pow(1.0 + qx * qx * ell_x * ell_x + qy * qy * ell_y * ell_y, -0.75) *
                          lambda_s_transmission(q, spec.lambda_s);
       // column n = 0 holds both m and -m: one draw, conjugated, keeps the field real
       const Complex xi = (mn == 0 && m < 0) ? std::conj(mode_noise(spec.seed, -m, 0))

@@ -4,6 +4,10 @@
 // Generation follows Hu & Tonder (1992): white noise filtered in the frequency domain by the
 // square root of the power spectrum of an exponential autocorrelation
 // R(tx, ty) = Rq^2 exp(-2.3 sqrt((tx/bx)^2 + (ty/by)^2)) (bx, by: lengths where R falls to 10 %).
+// Its power spectrum is proportional to (1 + (qx lx)^2 + (qy ly)^2)^(-3/2), l = b / 2.3. A lay
+// (ground or turned finish) is described by Peklenik's gamma = bx / by: x is the sliding
+// direction, bx = correlation_length and by = correlation_length / gamma; gamma > 1 is a lay
+// along the sliding direction (asperities elongated along x), gamma = 1 isotropic.
 //
 // The surface is a property of the physical window, not of the grid: the white noise is drawn
 // per Fourier mode (m, n) of the window from a counter-based generator keyed by (seed, m, n),
@@ -39,9 +43,10 @@ struct SurfaceSpec {
   double rq = 0.0;                 // root-mean-square roughness [m]
   double skewness = 0.0;           // [-]
   double kurtosis = 3.0;           // [-] (3 = Gaussian)
-  double correlation_length = 0.0; // 10 % autocorrelation length, both directions [m]
+  double correlation_length = 0.0; // 10 % autocorrelation length along x (sliding) [m]
   std::uint64_t seed = 1;          // random seed [-]
   double lambda_s = 0.0;           // short-wavelength cutoff (ISO Gaussian, 50 %); 0 = none [m]
+  double gamma = 1.0;              // Peklenik lay ratio bx / by; across x: correlation_length / gamma [-]
 };
 
 struct SurfaceStats {
@@ -52,13 +57,26 @@ struct SurfaceStats {
 };
 
 // heights (grid.size(), [m], zero mean) of a surface periodic in both directions over the
-// window nx dx by ny dy; throws InputError naming `source` for Rq or correlation length <= 0,
-// lambda_s < 0, or moments that no Fleishman transform reaches (kurtosis below
+// window nx dx by ny dy; throws InputError naming `source` for Rq, correlation length or gamma
+// <= 0, lambda_s < 0, or moments that no Fleishman transform reaches (kurtosis below
 // 1 + skewness^2 or far beyond it)
 std::vector<double> make_rough_surface(const Grid& grid, const SurfaceSpec& spec,
                                        const std::string& source);
 
 SurfaceStats calc_surface_stats(const std::vector<double>& heights);
+
+// rms slopes along x and y and rms curvature (Laplacian / 2, the mean of the two principal
+// curvatures) of a periodic surface (grid.size()), by spectral differentiation
+struct SurfaceGradients {
+  double slope_x = 0.0;    // rms dz/dx [-]
+  double slope_y = 0.0;    // rms dz/dy [-]
+  double curvature = 0.0;  // rms (d2z/dx2 + d2z/dy2) / 2 [1/m]
+};
+SurfaceGradients calc_surface_gradients(const Grid& grid, const std::vector<double>& heights);
+
+// correlation length of a periodic surface along x (along_x) or y: the first lag at which
+// its autocorrelation falls to 10 %, linearly interpolated between cells [m]
+double measure_correlation_length(const Grid& grid, const std::vector<double>& heights, bool along_x);
 
 // coefficients (b, c, d) of the Fleishman transform for a target skewness and kurtosis;
 // returns false when Newton's method finds none

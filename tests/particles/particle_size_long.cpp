@@ -6,9 +6,10 @@
 //   changes the size while the harder surface's roughness does;
 // - equilibrium: every wear-loop contact carries the window's load, and no particle spans
 //   the whole periodic window.
-// Each case runs the default wear loop (8-12 iterations, steady-state check) on the study's
-// 240 x 240 grid; the roughness trend is averaged over three surface seeds (about 2 min in
-// Release on 2 cores).
+// Each case runs the default wear loop (12-16 iterations, steady-state check) on the study's
+// 240 x 240 grid with the preset surfaces (lay gamma 2 along sliding, lambda_s 0.5 um; the
+// surface-input map is in docs/particles.md); the roughness trend is averaged over three
+// surface seeds (about 2 min in Release on 2 cores).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -75,12 +76,10 @@ TEST_CASE("steel-steel at 10 N: sizes within a factor 2 of the study's model") {
   CHECK(within_factor_2(steel(10.0).thickness * 1e9, 197));
 }
 
-// Known gap (docs/particles.md): with the worn depth band-limited at lambda_s (needed for the
-// wear loop to converge with the grid) the 2.5 N width is 361 nm, 2.2x the study's 161 nm;
-// particles come out as wide as long (the generated surfaces are isotropic) while the
-// study's are 1.6-1.8x longer than wide. Run, reported, allowed to fail.
-TEST_CASE("steel-steel at 2.5 N: sizes within a factor 2 of the study's model" *
-          doctest::may_fail()) {
+// With isotropic surfaces the 2.5 N width was 361 nm (2.24x); with the lay (gamma 2) it is
+// 281 nm (1.75x) for the preset seeds, 302 and 305 nm (1.88-1.89x) for two more seed pairs
+// (docs/particles.md): met, with a thin margin on the width.
+TEST_CASE("steel-steel at 2.5 N: sizes within a factor 2 of the study's model") {
   CHECK(within_factor_2(steel(2.5).length * 1e9, 267));
   CHECK(within_factor_2(steel(2.5).width * 1e9, 161));
   CHECK(within_factor_2(steel(2.5).thickness * 1e9, 151));
@@ -97,7 +96,9 @@ TEST_CASE("steel-steel: particle size grows with load") {
 // Known gap (docs/particles.md, "Layered steel-brass"): the rough contact is fully plastic
 // (the uncapped elastic peaks would be 60-80 x H), so the film's lower composite modulus,
 // which lowers the elastic pressures by about 25 %, leaves the capped pressure and the
-// particles within about 2 %; run, reported, allowed to fail
+// particles within about 3 % (-0.7 to -2.8 % over three seed pairs). No surface input that
+// keeps the study's Rq 760 nm on this window makes the contact partly elastic (the surface
+// map in docs/particles.md); run, reported, allowed to fail
 TEST_CASE("steel-brass: the layered model gives smaller particles than the homogeneous one" *
           doctest::may_fail()) {
   const SizeStats layered = run(Case{PairName::kSteelBrass, 10.0, 1.0, 1.0, true});
@@ -107,9 +108,9 @@ TEST_CASE("steel-brass: the layered model gives smaller particles than the homog
 
 // Roughness trend, averaged over three surface seeds: doubling the softer disk's Rq should
 // move the mean radius by less than 10 %, doubling the harder cylinder's Rq by more than 10 %
-// and by more than twice the softer surface's effect. Known gap (docs/particles.md): with the
-// worn depth band-limited at lambda_s the softer surface's effect is -11 % (harder +16 %), so
-// the case is run, reported and allowed to fail.
+// and by more than twice the softer surface's effect. Known gap (docs/particles.md): the softer
+// surface's effect is -10.1 % and the harder's +14.4 % (lay gamma 2; isotropic: -10.9 / +16.4 %),
+// and no mapped surface input brings the softer one below 7 %; run, reported, allowed to fail.
 TEST_CASE("roughness trend: softer barely matters, harder does (three seeds)" *
           doctest::may_fail()) {
   double base = 0.0, softer2 = 0.0, harder2 = 0.0;

@@ -8,9 +8,9 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // The study does not state correlation lengths. 2 um (20 grid cells at its 102 nm spacing) is
-// assumed for every surface; it is the one free input of the model, set once for steel-steel
-// at 10 N (1 um gave particles 2.2x shorter than the study's model) and documented with its
-// sensitivity in docs/particles.md.
+// assumed for every surface, along the sliding direction x (across it 2 um / kLay for the
+// steel and brass surfaces); set once for steel-steel at 10 N (1 um gave particles 2.2x
+// shorter than the study's model) and mapped with lambda_s and the lay in docs/particles.md.
 constexpr double kCorrelationLength = 2.0e-6;
 
 // Short-wavelength cutoff of every surface (ISO 16610-21 Gaussian lambda_s, 50 % transmission).
@@ -22,9 +22,21 @@ constexpr double kCorrelationLength = 2.0e-6;
 // particle sizes do not converge (docs/particles.md, grid convergence).
 constexpr double kLambdaS = 0.5e-6;
 
+// Lay of the study's steel and brass surfaces (Peklenik gamma = correlation length along
+// sliding / across). Assumed, the study gives none: a cylindrically ground cylinder has its lay
+// around the circumference, i.e. along the sliding direction, and a disk ground or turned along
+// its track likewise. gamma = 2 (ISO 25178 texture aspect ratio Str = 0.5) is a mild lay, weaker
+// than a ground finish usually shows. It was chosen among 1, 2 and 3 (docs/particles.md, surface
+// inputs): isotropic surfaces give particles as wide as long and a 2.5 N width 2.2-2.5x the
+// study's; gamma 2 gives L/W about 1.3 (the study's AFM particles 1.38, its model 1.8) and keeps
+// the wear loop's grid convergence, which gamma 3 loses (R -12 % from 240² to 320²). Only the
+// disk's lay changes the sizes (the disk's roughness sets the contact spots). The knee pairs
+// stay isotropic (polished CoCr; the insert's lay is unknown).
+constexpr double kLay = 2.0;
+
 BodySpec steel_cylinder() {
   return {"steel (cylinder)", ElasticBody{210e9, 0.3}, 6.0e9, 6.0e9 / 2.8,
-          SurfaceSpec{50e-9, -0.27, 8.6, kCorrelationLength, 11, kLambdaS}, ""};
+          SurfaceSpec{50e-9, -0.27, 8.6, kCorrelationLength, 11, kLambdaS, kLay}, ""};
 }
 
 BodySpec polished_cocr() {
@@ -89,17 +101,18 @@ ParticleModelConfig make_pair_config(PairName pair) {
     case PairName::kSteelSteel:
       c.harder = steel_cylinder();
       c.softer = {"steel (disk)", ElasticBody{210e9, 0.3}, 1.8e9, 0.64e9,
-                  SurfaceSpec{610e-9, -0.84, 4.46, kCorrelationLength, 23, kLambdaS}, ""};
+                  SurfaceSpec{610e-9, -0.84, 4.46, kCorrelationLength, 23, kLambdaS, kLay}, ""};
       c.friction = 0.16;
       c.load = 10.0;
       c.sources = "particle-size study (physics.md section 9): cylinder R 2 mm x 6 mm, E, nu, "
-                  "H, sigma_y, Rq, skewness, kurtosis, mu 0.16; correlation length 2 um and lambda_s 0.5 um (ISO 3274: 5 x the study's 102 nm "
+                  "H, sigma_y, Rq, skewness, kurtosis, mu 0.16; correlation length 2 um along sliding, lay "
+                  "gamma 2 (1 um across) and lambda_s 0.5 um (ISO 3274: 5 x the study's 102 nm "
                   "spacing) assumed";
       break;
     case PairName::kSteelBrass:
       c.harder = steel_cylinder();
       c.softer = {"brass (disk)", ElasticBody{88e9, 0.3}, 2.64e9, 0.94e9,
-                  SurfaceSpec{760e-9, -1.0, 4.94, kCorrelationLength, 23, kLambdaS}, ""};
+                  SurfaceSpec{760e-9, -1.0, 4.94, kCorrelationLength, 23, kLambdaS, kLay}, ""};
       c.friction = 0.3;
       c.load = 10.0;
       // brass transfer film on the steel cylinder (layered model); 0.5 um assumed
@@ -108,7 +121,8 @@ ParticleModelConfig make_pair_config(PairName pair) {
       c.harder.elastic.film_poisson = 0.3;
       c.sources = "particle-size study (physics.md section 9): brass disk E 88 GPa, H 2.64 GPa, "
                   "sigma_y 0.94 GPa, Rq 760 nm, skewness -1, kurtosis 4.94, mu 0.3; brass transfer "
-                  "film 0.5 um on the cylinder, correlation length 2 um and lambda_s 0.5 um assumed";
+                  "film 0.5 um on the cylinder, correlation length 2 um along sliding, lay gamma 2 and "
+                  "lambda_s 0.5 um assumed";
       break;
     case PairName::kUhmwpeCocr:
       c.harder = polished_cocr();

@@ -9,8 +9,10 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include "tests/diagnosis_knee/knee_hidden_effect.h"
 
@@ -107,10 +109,19 @@ TEST_CASE("write knee example" * doctest::skip()) {
   std::ofstream out(path);
   out << "# synthetic knee wear, tests/diagnosis_knee/knee_hidden_effect.h, " << s.data.source;
   for (const auto& [name, value] : s.params) out << ", " << name << " " << value;
-  out << "\ncondition,specimen,cycles,quantity,value\n";
+  // one line per specimen and cycle count (volume rows come first, then the depth rows)
+  std::map<std::tuple<std::string, std::string, double>, std::pair<double, double>> cells;
   for (const auto& m : s.data.rows) {
-    out << m.group << "," << m.specimen << "," << m.x << "," << m.quantity << "," << m.value
-        << "\n";
+    auto& c = cells[{m.group, m.specimen, m.x}];
+    (m.quantity == "volume_mm3" ? c.first : c.second) = m.value;
+  }
+  const bool depth = env_long("KNEESIM_EXAMPLE_DEPTH", 0) != 0;
+  out << "\ncondition,specimen,cycles,volume_mm3" << (depth ? ",max_depth_mm" : "") << "\n";
+  for (const auto& [key, v] : cells) {
+    out << std::get<0>(key) << "," << std::get<1>(key) << "," << std::get<2>(key) << ","
+        << v.first;
+    if (depth) out << "," << v.second;
+    out << "\n";
   }
   CHECK(out.good());
 }

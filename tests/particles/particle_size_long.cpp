@@ -106,26 +106,46 @@ TEST_CASE("steel-brass: the layered model gives smaller particles than the homog
   CHECK(layered.eq_radius < 0.95 * homogeneous.eq_radius);
 }
 
-// Roughness trend, averaged over three surface seeds: doubling the softer disk's Rq should
-// move the mean radius by less than 10 %, doubling the harder cylinder's Rq by more than 10 %
-// and by more than twice the softer surface's effect. Known gap (docs/particles.md): the softer
-// surface's effect is -10.1 % and the harder's +14.4 % (lay gamma 2; isotropic: -10.9 / +16.4 %),
-// and no mapped surface input brings the softer one below 7 %; run, reported, allowed to fail.
-TEST_CASE("roughness trend: softer barely matters, harder does (three seeds)" *
+// Roughness trend, averaged over three surface seeds (mean equivalent radius at 10 N, Rq of
+// one body doubled); computed once and shared by the two cases below.
+struct RoughnessTrend {
+  double base = 0.0, softer2 = 0.0, harder2 = 0.0;  // [m]
+};
+const RoughnessTrend& roughness_trend() {
+  static const RoughnessTrend t = [] {
+    RoughnessTrend r;
+    for (int s = 0; s < 3; ++s) {
+      r.base += (s == 0 ? steel(10.0) : run(Case{PairName::kSteelSteel, 10.0, 1.0, 1.0, true, 100 * s}))
+                    .eq_radius / 3.0;
+      r.softer2 += run(Case{PairName::kSteelSteel, 10.0, 2.0, 1.0, true, 100 * s}).eq_radius / 3.0;
+      r.harder2 += run(Case{PairName::kSteelSteel, 10.0, 1.0, 2.0, true, 100 * s}).eq_radius / 3.0;
+    }
+    std::printf("roughness trend over 3 seeds: R base %.1f, softer x2 %.1f (%+.1f %%), harder x2 "
+                "%.1f (%+.1f %%) nm\n",
+                r.base * 1e9, r.softer2 * 1e9, 100 * (r.softer2 / r.base - 1.0), r.harder2 * 1e9,
+                100 * (r.harder2 / r.base - 1.0));
+    return r;
+  }();
+  return t;
+}
+
+// The harder surface's roughness matters: doubling the cylinder's Rq moves the mean radius by
+// more than 10 % (measured +14.4 %, each seed pair +13 to +16 %; docs/particles.md).
+TEST_CASE("roughness trend: the harder surface's roughness changes the size (three seeds)") {
+  const RoughnessTrend& t = roughness_trend();
+  CHECK(t.harder2 / t.base - 1.0 > 0.1);
+}
+
+// The softer surface's roughness should barely matter: |change| < 5 % when the disk's Rq is
+// doubled, and the harder surface's effect more than twice the softer's. Known gap
+// (docs/particles.md, surface inputs): the softer surface's effect is -10.1 % (harder +14.4 %;
+// isotropic surfaces -10.9 / +16.4 %), and no mapped surface input brings it below about 6 %;
+// run, reported, allowed to fail.
+TEST_CASE("roughness trend: the softer surface's roughness barely matters (three seeds)" *
           doctest::may_fail()) {
-  double base = 0.0, softer2 = 0.0, harder2 = 0.0;
-  for (int s = 0; s < 3; ++s) {
-    base += (s == 0 ? steel(10.0) : run(Case{PairName::kSteelSteel, 10.0, 1.0, 1.0, true, 100 * s}))
-                .eq_radius / 3.0;
-    softer2 += run(Case{PairName::kSteelSteel, 10.0, 2.0, 1.0, true, 100 * s}).eq_radius / 3.0;
-    harder2 += run(Case{PairName::kSteelSteel, 10.0, 1.0, 2.0, true, 100 * s}).eq_radius / 3.0;
-  }
-  const double d_soft = std::abs(softer2 / base - 1.0);
-  const double d_hard = harder2 / base - 1.0;
-  std::printf("roughness trend over 3 seeds: R base %.1f, softer x2 %.1f (%+.1f %%), harder x2 "
-              "%.1f (%+.1f %%) nm\n",
-              base * 1e9, softer2 * 1e9, 100 * (softer2 / base - 1.0), harder2 * 1e9, 100 * d_hard);
-  CHECK(d_soft < 0.1);
-  CHECK(d_hard > 0.1);
+  const RoughnessTrend& t = roughness_trend();
+  const double d_soft = std::abs(t.softer2 / t.base - 1.0);
+  const double d_hard = t.harder2 / t.base - 1.0;
+  CHECK(d_soft < 0.05);
   CHECK(d_hard > 2.0 * d_soft);
 }

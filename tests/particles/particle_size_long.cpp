@@ -139,7 +139,7 @@ TEST_CASE("roughness trend: the harder surface's roughness changes the size (thr
 // The softer surface's roughness should barely matter: |change| < 5 % when the disk's Rq is
 // doubled, and the harder surface's effect more than twice the softer's. Known gap
 // (docs/particles.md, surface inputs): the softer surface's effect is -10.1 % (harder +14.4 %;
-// isotropic surfaces -10.9 / +16.4 %), and no mapped surface input brings it below about 6 %;
+// isotropic surfaces -10.9 / +16.4 %), and no mapped surface input brings it below 5 %;
 // run, reported, allowed to fail.
 TEST_CASE("roughness trend: the softer surface's roughness barely matters (three seeds)" *
           doctest::may_fail()) {

@@ -7,6 +7,7 @@
 // the rates over many more seeds are in docs/diagnosis.md ("knee wear sweep" below).
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -124,4 +125,53 @@ TEST_CASE("write knee example" * doctest::skip()) {
     out << "\n";
   }
   CHECK(out.good());
+}
+
+// How often the generator itself makes a clean data set whose specimens differ between
+// conditions like an effect (skipped by default; docs/diagnosis.md, knee hidden-effect
+// tests): per clean volume-only set, each specimen's wear factor (least-squares slope through
+// the origin over the condition's archard volume per unit k and cycle), and the t statistic
+// of ln k regressed on the condition's ln p and on its cross-shear ratio; |t| > 4.17 on
+// 22 degrees of freedom is what dAICc < -12 amounts to for a one-parameter condition contrast.
+//   KNEESIM_SWEEP_FIRST_SEED=1000000 KNEESIM_SWEEP_SEEDS=100000
+//   build/tests/diagnosis_knee/test_diagnosis_knee_long -tc="generator contrast tail" --no-skip
+TEST_CASE("generator contrast tail" * doctest::skip()) {
+  const auto first = static_cast<std::uint64_t>(env_long("KNEESIM_SWEEP_FIRST_SEED", 1000000));
+  const int seeds = static_cast<int>(env_long("KNEESIM_SWEEP_SEEDS", 10000));
+  const auto& tables = knee_test_tables();
+  kneesim::diagnosis::KneeWearParams unit;
+  unit.k = 1e-6;
+  auto t_of = [](const std::vector<double>& x, const std::vector<double>& y) {
+    const double n = static_cast<double>(x.size());
+    double mx = 0, my = 0;
+    for (size_t i = 0; i < x.size(); ++i) mx += x[i] / n, my += y[i] / n;
+    double sxx = 0, sxy = 0;
+    for (size_t i = 0; i < x.size(); ++i) sxx += (x[i] - mx) * (x[i] - mx), sxy += (x[i] - mx) * (y[i] - my);
+    const double b = sxy / sxx;
+    double rss = 0;
+    for (size_t i = 0; i < x.size(); ++i) rss += std::pow(y[i] - my - b * (x[i] - mx), 2);
+    return std::abs(b) / std::sqrt(rss / (n - 2) / sxx);
+  };
+  int above_p = 0, above_cs = 0, above_either = 0;
+  for (int i = 0; i < seeds; ++i) {
+    const auto s = make_synthetic_knee_wear(Effect::none, first + static_cast<std::uint64_t>(i), false);
+    std::map<std::string, std::pair<double, double>> fit;  // group/specimen -> sum xy, sum xx
+    for (const auto& m : s.data.rows) {
+      const double per = tables.at(m.group)->volume(unit, m.x) * 1e9;  // mm^3 at k = 1
+      auto& f = fit[m.group + "/" + m.specimen];
+      f.first += per * m.value, f.second += per * per;
+    }
+    std::vector<double> lnp, cs, lnk;
+    for (const auto& [key, f] : fit) {
+      const auto& t = *tables.at(key.substr(0, key.find('/')));
+      lnp.push_back(std::log(t.mean_pressure()));
+      cs.push_back(t.mean_cross_shear());
+      lnk.push_back(std::log(f.first / f.second));
+    }
+    const bool p = t_of(lnp, lnk) > 4.17, c = t_of(cs, lnk) > 4.17;
+    above_p += p, above_cs += c, above_either += (p || c);
+  }
+  MESSAGE("clean sets " << seeds << ": |t| > 4.17 on ln p " << above_p << ", on cross-shear "
+                        << above_cs << ", either " << above_either);
+  CHECK(seeds > 0);
 }

@@ -43,13 +43,14 @@ namespace {
 
 // The measurements with their noise and specimen structure.
 //
-// Noise: one variance per measured quantity, profiled with every fit, and, when the case says
-// its measurement error grows with the measured amount (wear: a balance or profilometer error
-// plus a relative part), a sd a_q + b_q |f| per quantity. Residuals (own units) are weighted by
-// w_i, sd_i = sigma / w_i; w_i starts at unit_i, which converts quantity q into the first
-// quantity's unit by the ratio of the measured RMS values (the conversion only sets the unit
-// the RMSEs are printed in; the likelihood does not depend on it), and is re-estimated from
-// the fit's residuals. Why: volume and depth (AP and IE) are measured with different
+// Noise (DiagnosisCase::noise_model): one sd for all rows (pooled), one per measured quantity,
+// or, when the measurement error grows with the measured amount (wear: a balance or
+// profilometer error plus a relative part), a sd a_q + b_q |f| per quantity. Residuals (own
+// units) are weighted by w_i, sd_i = sigma / w_i; w_i starts at unit_i, which converts quantity
+// q into the first quantity's unit by the ratio of the measured RMS values (the conversion only
+// sets the unit the RMSEs are printed in; the likelihood does not depend on it), and is
+// re-estimated from the fit's residuals, or, for the proportional line with specimens, once
+// from the pure error and shared by every candidate (diagnose()). Why: volume and depth (AP and IE) are measured with different
 // instruments and precisions; with one pooled variance the noisier quantity is over-weighted,
 // and an effect that changes only that quantity (creep: depth) gains likelihood by fitting its
 // noise (about 1 clean block-on-ring set in 750 was named `creep` that way). A sd that grows
@@ -174,7 +175,8 @@ std::vector<std::vector<int>> clusters_of(const Problem& pb, const std::vector<i
   return out;
 }
 
-// One number for a model's errors: the count-weighted geometric mean of the per-quantity RMSEs,
+// One number for a model's errors (pooled noise: the RMS of the converted residuals; otherwise
+// as follows): the count-weighted geometric mean of the per-quantity RMSEs,
 // each in the first quantity's unit. It is the Gaussian likelihood with one variance per
 // quantity, profiled (-2 log L / n = sum_q (n_q / n) ln RMSE_q^2 + const), the noise model of
 // the fits; so ratios between models (the gain, the held-out threshold) do not depend on the
@@ -317,9 +319,10 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
                      " needed to fit the " + std::to_string(m.specs.size()) +
                      " parameters of candidate " + std::string(effect_name(e)) + ".");
   }
-  // alternate: fit at the current precision ratios (multi-start at rho = 0 the first time,
-  // then profile the specimen variance ratio), re-estimate the ratios from the residuals;
-  // keep the (params, noise) with the lowest AICc, an exact likelihood value at each step
+  // alternate: fit at the current row weights (multi-start at rho = 0 the first time, then
+  // profile the specimen variance ratio), re-estimate the weights from the residuals (not
+  // with pooled or shared weights); keep the (params, noise) with the lowest AICc, an exact
+  // likelihood value at each step
   Noise noise{pb.fixed_w.size() ? pb.fixed_w : pb.unit, 0.0};
   Noise best_noise = noise;
   FitResult best;

@@ -90,7 +90,9 @@ KneeSynthetic make_synthetic_knee_wear(Effect effect, std::uint64_t seed, bool w
       ps.k = p.k * std::exp(0.05 * normal(rng));
       const auto rates = tables.at(c)->rates(ps);
       for (double n : kCycles) {
-        diagnosis::Measurement m{c, "s" + std::to_string(sp), "volume_mm3", n, 0.0, row++};
+        std::string specimen = "s";  // appended, not "s" + ...: GCC 12 -Wrestrict false alarm
+        specimen += std::to_string(sp);
+        diagnosis::Measurement m{c, specimen, "volume_mm3", n, 0.0, row++};
         const double v = tables.at(c)->volume(ps, rates, n) * 1e9;
         m.value = std::max(0.0, v + (0.2 + 0.02 * v) * normal(rng));
         s.data.rows.push_back(m);

@@ -85,12 +85,15 @@ TEST_CASE("config: an out-of-range value names the file and line; materials and 
   const auto g = tmp.write("mat.toml",
                            "[material]\nname = \"soft\"\n"
                            "[materials.soft]\nelastic_modulus_MPa = 500\npoisson = 0.45\n"
-                           "[conditions.high]\nset = [\"contact.friction=0.05\"]\n");
+                           "[conditions.high]\nset = [\"contact.friction=0.05\"]\n"
+                           "[conditions.as_configured]\nset = []\n");
   const auto c = kneesim::models::load_config(g, {});
   CHECK(c.material.name == "soft");
   CHECK(c.user_materials.at("soft").elastic_modulus_MPa == 500.0);
   REQUIRE(c.conditions.count("high") == 1);
   CHECK(c.conditions.at("high") == std::vector<std::string>{"contact.friction=0.05"});
+  REQUIRE(c.conditions.count("as_configured") == 1);  // an empty list: the config as it is
+  CHECK(c.conditions.at("as_configured").empty());
 
   const auto h = tmp.write("cond.toml", "[conditions.high]\nset = [\"no equals sign\"]\n");
   const std::string ce = error_of([&] { kneesim::models::load_config(h, {}); });

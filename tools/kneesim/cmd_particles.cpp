@@ -82,7 +82,6 @@ void run_particles(const ParticlesOptions& o) {
   if (o.load_N >= 0.0) c.load = o.load_N;
   if (o.max_iterations > 0) c.max_iterations = o.max_iterations;
   if (o.no_film) c.harder.elastic.film_thickness = c.softer.elastic.film_thickness = 0.0;
-  c.min_iterations = std::min(c.min_iterations, c.max_iterations);
 
   // run
   io::ProgressBar bar("particles " + c.pair);
@@ -121,6 +120,10 @@ void run_particles(const ParticlesOptions& o) {
   j["seconds"] = r.seconds;
   j["steady_state"] = r.steady_state;
   j["steady_from_iteration"] = r.steady_from;
+  const pt::RunLengths run = pt::resolve_run_lengths(c);
+  j["run"] = {{"pass_iterations", run.pass}, {"block_iterations", run.block},
+              {"min_iterations", run.min_iterations}, {"max_iterations", run.max_iterations},
+              {"steady_tolerance", c.steady_tolerance}};
   j["all_particles"] = size_json(r.all);
   j["pair"] = c.pair;
   j["load_N"] = c.load;
@@ -162,7 +165,8 @@ void add_particles_command(CLI::App& app) {
                   "steel-steel|steel-brass|uhmwpe-cocr|peek-cocr|cfrpeek-cocr");
   cmd->add_option("--load-N", opts->load_N, "normal load on the cylinder [N]");
   cmd->add_option("--out", opts->out, "output folder")->capture_default_str();
-  cmd->add_option("--max-iterations", opts->max_iterations, "wear-loop iteration limit");
+  cmd->add_option("--max-iterations", opts->max_iterations, "wear-loop iteration limit (default: 12 passes of the track, 192 iterations at the "
+                  "defaults; the loop stops earlier at a steady state)");
   cmd->add_flag("--no-film", opts->no_film, "drop transfer films (homogeneous model)");
   cmd->add_flag("--no-plots", opts->no_plots, "skip the PNG plots");
   cmd->callback([opts]() { run_particles(*opts); });

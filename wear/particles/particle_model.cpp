@@ -53,6 +53,19 @@ SizeStats calc_size_stats(const std::vector<ParticleRecord>& particles, int firs
   return s;
 }
 
+RunLengths resolve_run_lengths(const ParticleModelConfig& c) {
+  RunLengths r;
+  const long track_rows = static_cast<long>(c.grid.nx) * std::max(1, c.track_factor);
+  r.pass = c.slide_cells > 0
+               ? static_cast<int>((track_rows + c.slide_cells - 1) / c.slide_cells)
+               : 1;  // a track that does not move: every iteration sees the same rows
+  r.block = c.block > 0 ? c.block : r.pass;
+  r.max_iterations = c.max_iterations > 0 ? c.max_iterations : 12 * r.pass;
+  r.min_iterations = std::min(c.min_iterations > 0 ? c.min_iterations : 3 * r.pass,
+                              r.max_iterations);
+  return r;
+}
+
 ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::string& source,
                                        const std::function<void(double)>& progress) {
   const auto start = std::chrono::steady_clock::now();
@@ -95,8 +108,9 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
   std::vector<double> levels(static_cast<long>(c.nz) * n);
   const int refine = std::max(1, c.refine);
   std::vector<double> block_means;
+  const RunLengths run = resolve_run_lengths(c);
   int it = 0;
-  for (it = 1; it <= c.max_iterations; ++it) {
+  for (it = 1; it <= run.max_iterations; ++it) {
     // gap: cylinder profile minus both rough surfaces at this track position
     const long offset = static_cast<long>(it - 1) * c.slide_cells % ntrack;
     for (int i = 0; i < nx; ++i) {
@@ -170,13 +184,13 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
         for (int i = 0; i < nx; ++i) res.von_mises_section[static_cast<long>(k) * nx + i] = vm[static_cast<long>(i) * ny + jp];
       }
     }
-    if (progress) progress(double(it) / c.max_iterations);
+    if (progress) progress(double(it) / run.max_iterations);
     // steady state: block means of the equivalent radius
-    if (it % c.block == 0) {
-      const SizeStats b = calc_size_stats(res.particles, it - c.block + 1);
+    if (it % run.block == 0) {
+      const SizeStats b = calc_size_stats(res.particles, it - run.block + 1);
       block_means.push_back(b.eq_radius);
       const std::size_t nb = block_means.size();
-      if (it >= c.min_iterations && nb >= 2) {
+      if (it >= run.min_iterations && nb >= 2) {
         const double prev = block_means[nb - 2], cur = block_means[nb - 1];
         if (std::abs(cur - prev) <= c.steady_tolerance * std::max(prev, 1e-300)) {
           res.steady_state = true;
@@ -185,8 +199,8 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
       }
     }
   }
-  const int last = std::min(it, c.max_iterations);
-  res.steady_from = std::max(1, last - 2 * c.block + 1);
+  const int last = std::min(it, run.max_iterations);
+  res.steady_from = std::max(1, last - 2 * run.block + 1);
   res.steady = calc_size_stats(res.particles, res.steady_from);
   res.all = calc_size_stats(res.particles, 1);
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -7,8 +7,9 @@
 // the harder body) while the worn track, longer than the window and periodic, advances by
 // `slide_cells` per iteration, so each iteration meets partly new, partly worn track and the
 // track is run in over the laps. The steady state is declared when the mean equivalent
-// radius of a block of iterations differs from the previous block's by less than the
-// tolerance; the reported sizes are the means over the last two blocks.
+// radius of a block of iterations (by default one pass of the track) differs from the
+// previous block's by less than the tolerance; the reported sizes are the means over the
+// last two blocks.
 //
 // Cost control: stress levels are computed from the surface down and stop at the first level
 // with no yielded cell, since a surface-reaching region cannot pass through it.
@@ -61,6 +62,16 @@ struct ParticleModelResult {
   int section_levels = 0;         // levels in the section [-]
   double seconds = 0.0;           // wall time [s]
 };
+
+// The run length actually used: config's block / min / max iterations with 0 (automatic)
+// resolved to 1 / 3 / 12 passes of the track, and min_iterations <= max_iterations.
+struct RunLengths {
+  int pass = 1;            // iterations per pass of the track [-]
+  int block = 1;           // [-]
+  int min_iterations = 1;  // [-]
+  int max_iterations = 1;  // [-]
+};
+RunLengths resolve_run_lengths(const ParticleModelConfig& config);
 
 // Throws InputError (naming `source`) for an unusable grid or a load above H x window area.
 ParticleModelResult run_particle_model(const ParticleModelConfig& config,

@@ -117,9 +117,9 @@ ParticleModelConfig read_particle_config(const std::filesystem::path& path) {
   r.set_int("grid", "nz", c.nz, -1e9, 1e9);
   r.set("grid", "dz_nm", c.dz, 1e-9, 1e-6, 1e9);
   r.set_int("grid", "refine", c.refine, 1, 16);
-  r.set_int("run", "min_iterations", c.min_iterations, 1, 1e6);
-  r.set_int("run", "max_iterations", c.max_iterations, 1, 1e6);
-  r.set_int("run", "block", c.block, 1, 1e6);
+  r.set_int("run", "min_iterations", c.min_iterations, 0, 1e6);  // 0 = automatic
+  r.set_int("run", "max_iterations", c.max_iterations, 0, 1e6);  // 0 = automatic
+  r.set_int("run", "block", c.block, 0, 1e6);  // 0 = automatic
   r.set_int("run", "slide_cells", c.slide_cells, 0, 1e9);
   r.set_int("run", "track_factor", c.track_factor, 1, 64);
   r.set("run", "steady_tolerance", c.steady_tolerance, 1.0, 0.0, 10.0);

@@ -4,7 +4,8 @@
 //   pair = "steel-steel"          load_N = 10   friction = 0.16
 //   cylinder_radius_mm = 2        cylinder_length_mm = 6
 //   [grid]  nx ny dx_nm nz dz_nm refine
-//   [run]   min_iterations max_iterations block slide_cells track_factor steady_tolerance
+//   [run]   min_iterations max_iterations block (0 = automatic, in passes of the track)
+//           slide_cells track_factor steady_tolerance
 //   [harder] / [softer]  E_GPa nu hardness_GPa yield_GPa rq_nm skewness kurtosis
 //            correlation_length_nm peklenik_gamma lambda_s_nm seed film_thickness_nm film_E_GPa
 //            film_nu surface_csv  (peklenik_gamma: lay ratio, correlation length along x / across)

@@ -11,6 +11,7 @@
 #include "analysis/diagnosis/knee_wear_case.h"
 #include "engine/errors.h"
 #include "tests/diagnosis_knee/knee_hidden_effect.h"
+#include "tests/loads/input_error.h"
 
 namespace fs = std::filesystem;
 using namespace kneesim;
@@ -23,14 +24,7 @@ std::string write_temp(const std::string& name, const std::string& text) {
   return p.string();
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::function<void()>& f) { return test::input_error_message(f); }
 
 }  // namespace
 

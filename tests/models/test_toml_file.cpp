@@ -8,25 +8,14 @@
 #include "engine/errors.h"
 #include "models/config.h"
 #include "temp_dir.h"
+#include "tests/loads/input_error.h"
 #include "tools/io/toml_file.h"
 
 using kneesim::InputError;
 using kneesim::test::TempDir;
 namespace io = kneesim::io;
 
-namespace {
-
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
+using kneesim::test::input_error_message;
 
 TEST_CASE("TOML documents flatten to dotted keys with their lines") {
   TempDir tmp;
@@ -55,13 +44,13 @@ TEST_CASE("TOML documents flatten to dotted keys with their lines") {
 TEST_CASE("TOML errors name the file and the line") {
   TempDir tmp;
   const auto bad = tmp.write("bad.toml", "a = 1\nb = = 2\n");
-  const std::string syntax = error_of([&] { io::read_toml_file(bad); });
+  const std::string syntax = input_error_message([&] { io::read_toml_file(bad); });
   CHECK(syntax.find("bad.toml:2") != std::string::npos);
   const auto mixed = tmp.write("mixed.toml", "\n\nm = [1, \"two\"]\n");
-  const std::string m = error_of([&] { io::read_toml_file(mixed); });
+  const std::string m = input_error_message([&] { io::read_toml_file(mixed); });
   CHECK(m.find("mixed.toml:3") != std::string::npos);
   CHECK(m.find("'m'") != std::string::npos);
-  const std::string missing = error_of([&] { io::read_toml_file(tmp.path / "none.toml"); });
+  const std::string missing = input_error_message([&] { io::read_toml_file(tmp.path / "none.toml"); });
   CHECK(missing.find("none.toml") != std::string::npos);
 }
 
@@ -78,7 +67,7 @@ TEST_CASE("config: an out-of-range value names the file and line; materials and 
   const auto f = tmp.write("run.toml",
                            "[contact]\n"
                            "friction = 1.5\n");
-  const std::string e = error_of([&] { kneesim::models::load_config(f, {}); });
+  const std::string e = input_error_message([&] { kneesim::models::load_config(f, {}); });
   CHECK(e.find("run.toml:2") != std::string::npos);
   CHECK(e.find("contact.friction") != std::string::npos);
 
@@ -96,7 +85,7 @@ TEST_CASE("config: an out-of-range value names the file and line; materials and 
   CHECK(c.conditions.at("as_configured").empty());
 
   const auto h = tmp.write("cond.toml", "[conditions.high]\nset = [\"no equals sign\"]\n");
-  const std::string ce = error_of([&] { kneesim::models::load_config(h, {}); });
+  const std::string ce = input_error_message([&] { kneesim::models::load_config(h, {}); });
   CHECK(ce.find("cond.toml:2") != std::string::npos);
   CHECK(ce.find("key=value") != std::string::npos);
 }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/errors.h"
+#include "tests/loads/input_error.h"
 #include "tests/loads/temp_dir.h"
 #include "wear/particles/particles_config.h"
 
@@ -16,12 +17,7 @@ namespace pt = kneesim::particles;
 namespace {
 
 std::string error_of(const std::filesystem::path& file) {
-  try {
-    pt::read_particle_config(file);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return kneesim::test::input_error_message([&] { pt::read_particle_config(file); });
 }
 
 }  // namespace

@@ -32,10 +32,13 @@ def main(out):
         ax.hist([parts["eq_radius_nm"], parts["length_nm"], parts["thickness_nm"]], bins=30,
                 label=["equivalent radius", "length", "thickness"], histtype="step")
         ax.axvspan(100, 1000, color="0.9", zorder=0, label="0.1-1 um (most active)")
+        ax.legend()
+    else:
+        ax.text(0.5, 0.5, "no particles: no yielded region reaches the surface",
+                ha="center", va="center", transform=ax.transAxes)
     ax.set_xlabel("size [nm]")
     ax.set_ylabel("particles")
     ax.set_title(title)
-    ax.legend()
     fig.tight_layout()
     fig.savefig(os.path.join(out, "size_histogram.png"), dpi=120)
 

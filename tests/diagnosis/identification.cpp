@@ -6,6 +6,7 @@
 
 #include "analysis/diagnosis/bor_case.h"
 #include "analysis/diagnosis/diagnose.h"
+#include "tests/diagnosis/candidate_line.h"
 #include "tests/diagnosis/hidden_effect.h"
 
 namespace kneesim::test {
@@ -61,15 +62,7 @@ IdentificationTally run_identification(std::uint64_t first_seed, int seeds, bool
                       r.extended().heldout_rmse / r.candidates.front().heldout_rmse);
         t.failures += line;
         for (const auto& m : r.candidates) {
-          std::snprintf(line, sizeof line, "    %s: dAICc %.1f, held-out RMSE / none's %.3f,",
-                        std::string(diagnosis::effect_name(m.effect)).c_str(), m.aicc - aicc_none,
-                        m.heldout_rmse / r.candidates.front().heldout_rmse);
-          t.failures += line;
-          for (Eigen::Index j = 0; j < m.params.size(); ++j) {
-            std::snprintf(line, sizeof line, " %s %.4g",
-                          m.specs[static_cast<size_t>(j)].name.c_str(), m.params[j]);
-            t.failures += line;
-          }
+          t.failures += candidate_line(r, m);
           for (size_t q = 0; q < r.quantities.size(); ++q) {
             double ss = 0.0, ssh = 0.0;
             int n = 0;

@@ -6,6 +6,7 @@
 #include "analysis/diagnosis/diagnose.h"
 #include "analysis/diagnosis/kinematics_case.h"
 #include "analysis/diagnosis/knee_wear_case.h"
+#include "tests/diagnosis/candidate_line.h"
 #include "tests/diagnosis_knee/knee_hidden_effect.h"
 
 namespace kneesim::test {
@@ -43,16 +44,7 @@ void tally(KneeTally& t, diagnosis::Effect truth, std::uint64_t seed,
   } else {
     t.failures += line;
     for (const auto& m : r.candidates) {
-      std::snprintf(line, sizeof line, "    %s: dAICc %.1f, held-out RMSE / none's %.3f,",
-                    std::string(diagnosis::effect_name(m.effect)).c_str(), m.aicc - aicc_none,
-                    m.heldout_rmse / r.candidates.front().heldout_rmse);
-      t.failures += line;
-      for (Eigen::Index j = 0; j < m.params.size(); ++j) {
-        std::snprintf(line, sizeof line, " %s %.4g", m.specs[static_cast<size_t>(j)].name.c_str(),
-                      m.params[j]);
-        t.failures += line;
-      }
-      t.failures += "\n";
+      t.failures += candidate_line(r, m) + "\n";
     }
   }
   if (truth == diagnosis::Effect::none && r.effect() != diagnosis::Effect::none) ++t.false_positives;

@@ -53,33 +53,9 @@ std::string bor_load_label(double load) {
 MeasuredData read_bor_measured(const std::string& path) {
   const CsvTable t = read_csv_table(path);
   const int c_load = t.require("load_N", kColumns);
-  const int c_cycles = t.require("cycles", kColumns);
-  const int c_volume = t.require("volume_mm3", kColumns);
-  const int c_depth = t.column("depth_mm");
-  const int c_specimen = t.column("specimen");
-  MeasuredData d;
-  d.source = path;
-  d.x_name = "cycles";
-  for (size_t r = 0; r < t.cells.size(); ++r) {
-    Measurement m;
-    m.group = bor_load_label(t.number(r, c_load, 1e-3, 1e4));
-    m.specimen = (c_specimen >= 0) ? t.cells[r][static_cast<size_t>(c_specimen)] : "";
-    m.x = t.number(r, c_cycles, 0.0, 1e9);
-    m.row = t.lines[r];
-    m.quantity = "volume_mm3";
-    m.value = t.number(r, c_volume, 0.0, 1e6);
-    d.rows.push_back(m);
-    if (c_depth >= 0 && !t.empty(r, c_depth)) {
-      m.quantity = "depth_mm";
-      m.value = t.number(r, c_depth, 0.0, 1e3);
-      d.rows.push_back(m);
-    }
-  }
-  // volume rows first, so the RMSE carries mm^3
-  std::stable_sort(d.rows.begin(), d.rows.end(), [](const Measurement& a, const Measurement& b) {
-    return a.quantity == "volume_mm3" && b.quantity != "volume_mm3";
+  return read_wear_measurements(t, kColumns, "depth_mm", 1e3, [&](size_t r) {
+    return bor_load_label(t.number(r, c_load, 1e-3, 1e4));
   });
-  return d;
 }
 
 DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {

@@ -49,38 +49,15 @@ std::string first_condition(const MeasuredData& d) {
 MeasuredData read_knee_wear_measured(const std::string& path) {
   const CsvTable t = read_csv_table(path);
   const int c_cond = t.require("condition", kColumns);
-  const int c_cycles = t.require("cycles", kColumns);
-  const int c_volume = t.require("volume_mm3", kColumns);
-  const int c_depth = t.column("max_depth_mm");
-  const int c_specimen = t.column("specimen");
-  MeasuredData d;
-  d.source = path;
-  d.x_name = "cycles";
-  for (size_t r = 0; r < t.cells.size(); ++r) {
-    Measurement m;
-    m.group = t.cells[r][static_cast<size_t>(c_cond)];
-    if (m.group.empty()) {
+  return read_wear_measurements(t, kColumns, "max_depth_mm", 100.0, [&](size_t r) {
+    const std::string& group = t.cells[r][static_cast<size_t>(c_cond)];
+    if (group.empty()) {
       throw InputError(path + ": row " + std::to_string(t.lines[r]) +
                        ", column condition: the condition name is empty; name a "
                        "[conditions.<name>] of the config.");
     }
-    m.specimen = (c_specimen >= 0) ? t.cells[r][static_cast<size_t>(c_specimen)] : "";
-    m.x = t.number(r, c_cycles, 0.0, 1e9);
-    m.row = t.lines[r];
-    m.quantity = "volume_mm3";
-    m.value = t.number(r, c_volume, 0.0, 1e6);
-    d.rows.push_back(m);
-    if (c_depth >= 0 && !t.empty(r, c_depth)) {
-      m.quantity = "max_depth_mm";
-      m.value = t.number(r, c_depth, 0.0, 100.0);
-      d.rows.push_back(m);
-    }
-  }
-  // volume rows first, so the RMSE carries mm^3
-  std::stable_sort(d.rows.begin(), d.rows.end(), [](const Measurement& a, const Measurement& b) {
-    return a.quantity == "volume_mm3" && b.quantity != "volume_mm3";
+    return group;
   });
-  return d;
 }
 
 std::map<std::string, models::Config> knee_condition_configs(const MeasuredData& data,

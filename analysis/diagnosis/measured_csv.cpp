@@ -1,5 +1,6 @@
 #include "analysis/diagnosis/measured_csv.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -92,6 +93,37 @@ CsvTable read_csv_table(const std::string& path) {
   if (t.header.empty()) throw InputError(path + ": row 1: the file has no header row.");
   if (t.cells.empty()) throw InputError(path + ": row 2: the file has no data rows.");
   return t;
+}
+
+MeasuredData read_wear_measurements(const CsvTable& t, const std::string& expected_columns,
+                                    const std::string& depth_column, double depth_max,
+                                    const std::function<std::string(size_t row)>& group_of) {
+  const int c_cycles = t.require("cycles", expected_columns);
+  const int c_volume = t.require("volume_mm3", expected_columns);
+  const int c_depth = t.column(depth_column);
+  const int c_specimen = t.column("specimen");
+  MeasuredData d;
+  d.source = t.source;
+  d.x_name = "cycles";
+  for (size_t r = 0; r < t.cells.size(); ++r) {
+    Measurement m;
+    m.group = group_of(r);
+    m.specimen = (c_specimen >= 0) ? t.cells[r][static_cast<size_t>(c_specimen)] : "";
+    m.x = t.number(r, c_cycles, 0.0, 1e9);
+    m.row = t.lines[r];
+    m.quantity = "volume_mm3";
+    m.value = t.number(r, c_volume, 0.0, 1e6);
+    d.rows.push_back(m);
+    if (c_depth >= 0 && !t.empty(r, c_depth)) {
+      m.quantity = depth_column;
+      m.value = t.number(r, c_depth, 0.0, depth_max);
+      d.rows.push_back(m);
+    }
+  }
+  std::stable_sort(d.rows.begin(), d.rows.end(), [](const Measurement& a, const Measurement& b) {
+    return a.quantity == "volume_mm3" && b.quantity != "volume_mm3";
+  });
+  return d;
 }
 
 }  // namespace kneesim::diagnosis

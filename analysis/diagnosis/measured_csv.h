@@ -3,8 +3,11 @@
 // allowed range in one sentence. Shared by every diagnosis case.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
+
+#include "analysis/diagnosis/diagnosis_case.h"
 
 namespace kneesim::diagnosis {
 
@@ -27,5 +30,13 @@ struct CsvTable {
 // reads a comma-separated file; throws InputError for a missing file, no header, or a row
 // whose field count differs from the header's
 CsvTable read_csv_table(const std::string& path);
+
+// The measurements of a wear CSV (block-on-ring, knee simulator): per row its group from
+// group_of(row), the specimen column when present, cycles, volume_mm3 and, where the optional
+// `depth_column` holds a value, a second measurement of that quantity in [0, depth_max].
+// Volume rows come first, so the RMSE carries mm^3. Errors as CsvTable's.
+MeasuredData read_wear_measurements(const CsvTable& t, const std::string& expected_columns,
+                                    const std::string& depth_column, double depth_max,
+                                    const std::function<std::string(size_t row)>& group_of);
 
 }  // namespace kneesim::diagnosis

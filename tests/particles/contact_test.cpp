@@ -10,6 +10,7 @@
 #include "engine/errors.h"
 #include "wear/particles/contact.h"
 #include "wear/particles/deflection.h"
+#include "tests/particles/hertz_sphere.h"
 
 using namespace kneesim::particles;
 
@@ -49,18 +50,11 @@ TEST_CASE("DC-FFT deflection of a uniform square patch equals Love's closed form
 }
 
 TEST_CASE("Hertz sphere on a half-space within 2 % at 128 x 128 over +-1.6 a") {
-  const double radius = 0.01, load = 10.0, es = e_star();
-  const double a = std::cbrt(3.0 * load * radius / (4.0 * es));
-  const double p0 = 3.0 * load / (2.0 * kPi * a * a);
-  const int n = 128;
-  Grid g{n, n, 3.2 * a / n, 3.2 * a / n, false};
-  DeflectionOperator op(g, kSteel, kSteel);
-  std::vector<double> h(g.size());
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) h[i * n + j] = (g.x(i) * g.x(i) + g.y(j) * g.y(j)) / (2 * radius);
-  ContactOptions opt;
-  opt.load = load;
-  const ContactResult r = solve_contact(op, h, opt);
+  const double radius = 0.01, load = 10.0;
+  const kneesim::test::HertzSphere s = kneesim::test::solve_hertz_sphere(radius, load, 128, 3.2);
+  const double a = s.a, p0 = s.p0;
+  const Grid& g = s.grid;
+  const ContactResult& r = s.contact;
   CHECK(r.converged);
   const double p_max = *std::max_element(r.pressure.begin(), r.pressure.end());
   const double a_num = std::sqrt(r.contact_fraction * g.size() * g.cell_area() / kPi);
@@ -95,20 +89,10 @@ TEST_CASE("Hertz cylinder (periodic along its axis) within 2 % at 256 x 8 over +
 }
 
 TEST_CASE("hardness cap limits the pressure and keeps the load") {
-  const double radius = 0.01, load = 10.0, es = e_star();
-  const double a = std::cbrt(3.0 * load * radius / (4.0 * es));
-  const double p0 = 3.0 * load / (2.0 * kPi * a * a);
-  const int n = 64;
-  Grid g{n, n, 3.2 * a / n, 3.2 * a / n, false};
-  DeflectionOperator op(g, kSteel, kSteel);
-  std::vector<double> h(g.size());
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) h[i * n + j] = (g.x(i) * g.x(i) + g.y(j) * g.y(j)) / (2 * radius);
-  ContactOptions opt;
-  opt.load = load;
-  opt.hardness = 0.8 * p0;
-  const ContactResult r = solve_contact(op, h, opt);
-  CHECK(*std::max_element(r.pressure.begin(), r.pressure.end()) <= opt.hardness);
+  const double load = 10.0;
+  const kneesim::test::HertzSphere s = kneesim::test::solve_hertz_sphere(0.01, load, 64, 3.2, 0.8);
+  const ContactResult& r = s.contact;
+  CHECK(*std::max_element(r.pressure.begin(), r.pressure.end()) <= s.hardness);
   CHECK(r.capped_fraction > 0.0);
   CHECK(r.load == doctest::Approx(load).epsilon(1e-6));
 }

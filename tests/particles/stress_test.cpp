@@ -9,28 +9,16 @@
 
 #include "wear/particles/contact.h"
 #include "wear/particles/stress.h"
+#include "tests/particles/hertz_sphere.h"
 
 using namespace kneesim::particles;
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
-
 TEST_CASE("Hertz sphere: von Mises maximum 0.62 p0 at depth 0.48 a (nu = 0.3)") {
-  const double radius = 0.01, load = 10.0;
-  const ElasticBody steel{210e9, 0.3};
-  const double es = 1.0 / (2.0 * compliance(210e9, 0.3));
-  const double a = std::cbrt(3.0 * load * radius / (4.0 * es));
-  const double p0 = 3.0 * load / (2.0 * kPi * a * a);
   const int n = 128;
-  Grid g{n, n, 4.0 * a / n, 4.0 * a / n, false};
-  DeflectionOperator op(g, steel, steel);
-  std::vector<double> h(g.size());
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) h[i * n + j] = (g.x(i) * g.x(i) + g.y(j) * g.y(j)) / (2 * radius);
-  ContactOptions opt;
-  opt.load = load;
-  const ContactResult r = solve_contact(op, h, opt);
+  const kneesim::test::HertzSphere hertz = kneesim::test::solve_hertz_sphere(0.01, 10.0, n, 4.0);
+  const double a = hertz.a, p0 = hertz.p0;
+  const Grid& g = hertz.grid;
+  const ContactResult& r = hertz.contact;
   SubsurfaceStress st(g, 0.3);
   st.set_traction(r.pressure, 0.0);
   // maximum over the field (levels every a/50 down to 1.2 a)

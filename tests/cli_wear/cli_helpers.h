@@ -140,6 +140,18 @@ inline Result kill_when_exists(const std::vector<std::string>& args, const fs::p
   return kill_when(args, dir, [&trigger] { return fs::exists(trigger); }, tag);
 }
 
+// the coarse short run of the resume acceptance: by default 1 Mc, 4 updates, 2 mm
+// elements, with `extra` arguments appended
+inline std::vector<std::string> wear_args(const fs::path& out, std::vector<std::string> extra = {},
+                                          const std::string& every = "250000",
+                                          const std::string& cycles = "1000000") {
+  std::vector<std::string> a = {"wear",  "--cycles", cycles, "--update-every", every,
+                                "--set", "implant.edge_length_mm=2", "--quiet",
+                                "--out", out.string()};
+  a.insert(a.end(), extra.begin(), extra.end());
+  return a;
+}
+
 inline std::vector<std::string> split(const std::string& line, char sep) {
   std::vector<std::string> out;
   std::stringstream ss(line);

@@ -75,10 +75,8 @@ TEST_CASE("kneesim compare: comparison.csv with the columns and the rankings of 
   // running the materials concurrently changes nothing: PEEK's wear.csv equals that of a
   // lone `kneesim wear --material peek` with the same settings, byte for byte
   const fs::path alone = tmp.path / "peek_alone";
-  const Result w = run_kneesim({"wear", "--material", "peek", "--cycles", "500000",
-                                "--update-every", "250000", "--set", "implant.edge_length_mm=2",
-                                "--quiet", "--out", alone.string()},
-                               tmp.path, "alone");
+  const Result w =
+      run_kneesim(wear_args(alone, {"--material", "peek"}, "250000", "500000"), tmp.path, "alone");
   REQUIRE(w.exit_code == 0);
   CHECK(same_bytes(slurp(alone / "wear.csv"), slurp(out / "peek" / "wear.csv")));
 }
@@ -90,11 +88,7 @@ TEST_CASE("kneesim wear killed before its first checkpoint: --resume starts afre
   TempDir tmp;
   const fs::path d1 = tmp.path / "D1", d3 = tmp.path / "D3";
   auto args = [](const fs::path& out, bool resume) {
-    std::vector<std::string> a = {"wear",  "--cycles", "1000000", "--update-every", "250000",
-                                  "--set", "implant.edge_length_mm=2", "--quiet",
-                                  "--out", out.string()};
-    if (resume) a.push_back("--resume");
-    return a;
+    return wear_args(out, resume ? std::vector<std::string>{"--resume"} : std::vector<std::string>{});
   };
   const Result r1 = run_kneesim(args(d1, false), tmp.path, "d1");
   REQUIRE(r1.exit_code == 0);
@@ -115,11 +109,8 @@ TEST_CASE("kneesim wear killed after its last checkpoint: --resume gives the sam
   TempDir tmp;
   const fs::path d1 = tmp.path / "D1", d4 = tmp.path / "D4";
   auto args = [](const fs::path& out, bool resume) {
-    std::vector<std::string> a = {"wear",  "--cycles", "500000", "--update-every", "250000",
-                                  "--set", "implant.edge_length_mm=2", "--quiet",
-                                  "--out", out.string()};
-    if (resume) a.push_back("--resume");
-    return a;
+    return wear_args(out, resume ? std::vector<std::string>{"--resume"} : std::vector<std::string>{},
+                     "250000", "500000");
   };
   const Result r1 = run_kneesim(args(d1, false), tmp.path, "d1");
   REQUIRE(r1.exit_code == 0);

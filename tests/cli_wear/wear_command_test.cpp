@@ -17,16 +17,6 @@ using namespace kneesim::test;
 
 namespace {
 
-// the coarse short run of the resume acceptance: 1 Mc, 4 updates, 2 mm elements
-std::vector<std::string> wear_args(const fs::path& out, std::vector<std::string> extra = {},
-                                   const std::string& every = "250000") {
-  std::vector<std::string> a = {"wear",  "--cycles", "1000000", "--update-every", every,
-                                "--set", "implant.edge_length_mm=2", "--quiet",
-                                "--out", out.string()};
-  a.insert(a.end(), extra.begin(), extra.end());
-  return a;
-}
-
 // the refusal contract: exit 2 (InputError), one line on stderr naming what was wrong
 void check_refused(const Result& r, const std::string& fragment, const fs::path& out) {
   CAPTURE(r.err);

@@ -12,7 +12,7 @@
 namespace kneesim::test {
 namespace {
 
-void tally(KneeTally& t, diagnosis::Effect truth, std::uint64_t seed,
+void tally(IdentificationTally& t, diagnosis::Effect truth, std::uint64_t seed,
            const diagnosis::DiagnosisResult& r, double min_gain) {
   ++t.runs;
   t.max_seconds = std::max(t.max_seconds, r.seconds);
@@ -60,10 +60,10 @@ void tally(KneeTally& t, diagnosis::Effect truth, std::uint64_t seed,
 
 }  // namespace
 
-KneeTally run_knee_wear_identification(const std::vector<diagnosis::Effect>& effects,
+IdentificationTally run_knee_wear_identification(const std::vector<diagnosis::Effect>& effects,
                                        std::uint64_t first_seed, int seeds, bool with_depth,
                                        int specimens) {
-  KneeTally t;
+  IdentificationTally t;
   diagnosis::DiagnosisOptions opt;
   opt.bootstrap = 0;  // identification only
   for (diagnosis::Effect truth : effects) {
@@ -78,9 +78,9 @@ KneeTally run_knee_wear_identification(const std::vector<diagnosis::Effect>& eff
   return t;
 }
 
-KneeTally run_kinematics_identification(const std::vector<diagnosis::Effect>& effects,
+IdentificationTally run_kinematics_identification(const std::vector<diagnosis::Effect>& effects,
                                         std::uint64_t first_seed, int seeds) {
-  KneeTally t;
+  IdentificationTally t;
   diagnosis::DiagnosisOptions opt;
   opt.bootstrap = 0;
   opt.multi_start = false;

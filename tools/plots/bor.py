@@ -1,13 +1,14 @@
 """Block-on-ring wear curves from `kneesim bor`: volume, depth, contact width and mean pressure
 against cycles. Usage: bor.py BOR_CSV OUT_PNG [TITLE]. The PNG is written atomically."""
 import csv
-import os
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from plotio import save_figure  # noqa: E402
 
 
 def main():
@@ -28,9 +29,7 @@ def main():
         ax.set_xlabel("cycles [thousands]")
     fig.suptitle("block-on-ring semi-analytic model" + (": " + title if title else ""))
     fig.tight_layout()
-    tmp = dst + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, dst)
+    save_figure(fig, dst, dpi=110)
 
 
 if __name__ == "__main__":

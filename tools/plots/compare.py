@@ -3,7 +3,7 @@ area and peak pressure over the gait cycle, one line per material.
 
 usage: compare.py OUT_DIR MATERIAL [MATERIAL ...]
 """
-from csvdata import read_columns as read_csv
+from plotio import read_columns as read_csv, save_figure
 import os
 import sys
 
@@ -25,7 +25,7 @@ def main():
     ax.grid(alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "compare_wear.png"), dpi=120)
+    save_figure(fig, os.path.join(out, "compare_wear.png"))
 
     for name, keys, labels in [
         ("compare_kinematics.png", ("ap_mm", "ie_deg"), ("AP, tibia anterior (mm)", "IE, tibia internal (deg)")),
@@ -40,7 +40,7 @@ def main():
             ax.legend()
         axes[1].set_xlabel("gait cycle (%)")
         fig.tight_layout()
-        fig.savefig(os.path.join(out, name), dpi=120)
+        save_figure(fig, os.path.join(out, name))
 
 
 if __name__ == "__main__":

@@ -3,13 +3,14 @@ extended model (top row), and residuals of both (bottom row), one column per mea
 quantity, one colour per condition. Usage: diagnosis.py RESIDUALS_CSV CURVES_CSV OUT_PNG
 [TITLE]. The PNG is written atomically."""
 import csv
-import os
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from plotio import save_figure  # noqa: E402
 
 
 def read(path):
@@ -58,9 +59,7 @@ def main():
     fig.suptitle("diagnosis" + (": " + title if title else "") +
                  "\n(dashed: baseline, solid: extended)", fontsize=10)
     fig.tight_layout()
-    tmp = dst + ".tmp.png"
-    fig.savefig(tmp, dpi=110)
-    os.replace(tmp, dst)
+    save_figure(fig, dst, dpi=110)
 
 
 if __name__ == "__main__":

@@ -4,7 +4,7 @@ usage: kinematics.py KINEMATICS.csv OUT.png [--measured MEASURED.csv]
 (the measured CSV has gait_pct, ap_mm, ie_deg in the project convention; `kneesim run`
 writes it from a CSV or .sto input)
 """
-from csvdata import read_columns as read_csv
+from plotio import read_columns as read_csv, save_figure
 import sys
 
 
@@ -34,7 +34,7 @@ def main():
         ax.legend()
     ax1.set_title("Tibial carriage kinematics")
     fig.tight_layout()
-    fig.savefig(args[1], dpi=120)
+    save_figure(fig, args[1])
 
 
 if __name__ == "__main__":

@@ -8,6 +8,8 @@ import sys
 import matplotlib
 import matplotlib.pyplot as plt
 
+from plotio import save_figure  # noqa: E402
+
 
 def read_table(path):
     with open(path) as f:
@@ -40,7 +42,7 @@ def main(out):
     ax.set_ylabel("particles")
     ax.set_title(title)
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "size_histogram.png"), dpi=120)
+    save_figure(fig, os.path.join(out, "size_histogram.png"))
 
     # mean size vs iteration
     fig, ax = plt.subplots(figsize=(6, 4))
@@ -54,7 +56,7 @@ def main(out):
     ax.set_ylabel("mean equivalent radius [nm]")
     ax.set_title(title + " (dotted: start of the reported window)")
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "mean_size_vs_iteration.png"), dpi=120)
+    save_figure(fig, os.path.join(out, "mean_size_vs_iteration.png"))
 
     # pressure map and von Mises section
     p = read_map(os.path.join(out, "pressure_map_MPa.csv"))
@@ -79,7 +81,7 @@ def main(out):
     a2.set_ylabel("depth [um]")
     a2.set_title(f"von Mises section at the peak pressure (cyan: yield {sy:.0f} MPa)")
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "pressure_von_mises.png"), dpi=120)
+    save_figure(fig, os.path.join(out, "pressure_von_mises.png"))
 
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 
 usage: wear.py WEAR.csv FINAL_DEPTH.csv WEAR.png DEPTH_MAP.png
 """
-from csvdata import read_columns as read_csv
+from plotio import read_columns as read_csv, save_figure
 import sys
 
 
@@ -28,7 +28,7 @@ def main():
     ax2.set_ylabel("maximum linear wear (mm)")
     ax2.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(wear_png, dpi=120)
+    save_figure(fig, wear_png)
 
     d = read_csv(depth_csv)
     fig, ax = plt.subplots(figsize=(7, 5))
@@ -40,7 +40,7 @@ def main():
     ax.set_aspect("equal")
     ax.set_title("Final wear depth, top view of the insert")
     fig.tight_layout()
-    fig.savefig(map_png, dpi=120)
+    save_figure(fig, map_png)
 
 
 if __name__ == "__main__":

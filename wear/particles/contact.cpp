@@ -104,6 +104,11 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
       left -= p[order[k]];
     }
   };
+  // converged when the pressure no longer changes and complementarity holds
+  auto settled = [&](double violations) {
+    const double dp = row_sum(nx, ny, [&](long k) { return std::abs(p[k] - p_old[k]); });
+    return area * dp <= opt.tolerance * target && violations <= allowed_violations();
+  };
   double g_old = 1.0;
   bool conjugate = false;
   for (int it = 1; it <= opt.max_iterations; ++it) {
@@ -126,8 +131,7 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
       p_old = p;
       select_capped(u);
       conjugate = false;
-      const double dp = row_sum(nx, ny, [&](long k) { return std::abs(p[k] - p_old[k]); });
-      if (area * dp <= opt.tolerance * target && violations <= allowed_violations()) {
+      if (settled(violations)) {
         res.converged = true;
         break;
       }
@@ -184,9 +188,7 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
       select_capped(u);
       conjugate = false;
     }
-    // converged when the pressure no longer changes
-    const double dp = row_sum(nx, ny, [&](long k) { return std::abs(p[k] - p_old[k]); });
-    if (area * dp <= opt.tolerance * target && violations <= allowed_violations()) {
+    if (settled(violations)) {
       res.converged = true;
       break;
     }

@@ -326,12 +326,7 @@ std::map<std::string, std::vector<std::string>> take_conditions(std::map<std::st
   for (auto it = flat.lower_bound(prefix); it != flat.end() && it->first.starts_with(prefix);) {
     const std::string rest = it->first.substr(prefix.size());
     const auto dot = rest.find('.');
-    // an empty TOML array has no element type: the adapter reads it as an empty number list
-    const auto* numbers = std::get_if<std::vector<double>>(&it->second.value);
-    static const std::vector<std::string> kNone;
-    const auto* set = numbers && numbers->empty()
-                          ? &kNone
-                          : std::get_if<std::vector<std::string>>(&it->second.value);
+    const std::vector<std::string>* set = io::as_string_list(it->second.value);
     if (dot == std::string::npos || rest.substr(dot + 1) != "set" || !set) {
       throw InputError(it->second.origin + ": [conditions.<name>] must hold exactly one key, "
                        "set = [\"key=value\", ...] (found '" + it->first + "')");

@@ -60,6 +60,10 @@ TEST_CASE("values given on the command line parse as TOML, bare words as strings
   CHECK(std::get<std::string>(io::parse_toml_value("peek")) == "peek");
   CHECK(std::get<std::string>(io::parse_toml_value("\"cfr peek\"")) == "cfr peek");
   CHECK(std::get<std::vector<double>>(io::parse_toml_value("[1, 2]")).size() == 2);
+  // an empty array has no element type; it serves as an empty string list
+  REQUIRE(io::as_string_list(io::parse_toml_value("[]")) != nullptr);
+  CHECK(io::as_string_list(io::parse_toml_value("[]"))->empty());
+  CHECK(io::as_string_list(io::parse_toml_value("[1]")) == nullptr);
 }
 
 TEST_CASE("config: an out-of-range value names the file and line; materials and conditions") {

@@ -83,6 +83,14 @@ TomlValue parse_toml_value(const std::string& text) {
   return convert(*node, "v", "value '" + text + "'");
 }
 
+const std::vector<std::string>* as_string_list(const TomlValue& value) {
+  static const std::vector<std::string> kEmpty;
+  if (const auto* numbers = std::get_if<std::vector<double>>(&value)) {
+    return numbers->empty() ? &kEmpty : nullptr;
+  }
+  return std::get_if<std::vector<std::string>>(&value);
+}
+
 std::string describe(const TomlValue& v) {
   std::ostringstream s;
   if (auto d = std::get_if<double>(&v)) {

@@ -31,6 +31,10 @@ TomlDocument read_toml_file(const std::filesystem::path& file);
 // parse as a TOML value is taken as a bare string (so --set material.name=peek works).
 TomlValue parse_toml_value(const std::string& text);
 
+// the value as a list of strings, or nullptr when it is not one. An empty TOML array has no
+// element type (it is stored as an empty number list) and counts as an empty string list.
+const std::vector<std::string>* as_string_list(const TomlValue& value);
+
 // the value as the user would write it, for error messages
 std::string describe(const TomlValue& value);
 

@@ -66,3 +66,17 @@ TEST_CASE("particle config: the lay (peklenik_gamma) overrides the preset and is
   CHECK(bad.find("h.toml:2") != std::string::npos);
   CHECK(bad.find("peklenik_gamma") != std::string::npos);
 }
+
+TEST_CASE("particle config: plastic_deformation is a boolean, roughness_tolerance a range-checked number") {
+  TempDir tmp;
+  const pt::ParticleModelConfig c = pt::read_particle_config(
+      tmp.write("k.toml", "plastic_deformation = false\n[run]\nroughness_tolerance = 0.05\n"));
+  CHECK_FALSE(c.plastic_deformation);
+  CHECK(c.roughness_tolerance == 0.05);
+  CHECK(pt::make_pair_config(pt::PairName::kSteelSteel).plastic_deformation);
+  const std::string type = error_of(tmp.write("l.toml", "plastic_deformation = 1\n"));
+  CHECK(type.find("l.toml:1") != std::string::npos);
+  CHECK(type.find("true or false") != std::string::npos);
+  const std::string range = error_of(tmp.write("m.toml", "[run]\nroughness_tolerance = -1\n"));
+  CHECK(range.find("roughness_tolerance") != std::string::npos);
+}

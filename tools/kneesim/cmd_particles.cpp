@@ -102,12 +102,14 @@ void run_particles(const ParticlesOptions& o) {
   io::Table its;
   its.columns = {"iteration", "particles", "mean_eq_radius_nm", "max_pressure_MPa", "load_N",
                  "contact_fraction", "capped_fraction", "cg_iterations", "cg_converged",
-                 "stress_levels"};
+                 "stress_levels", "particle_volume_um3", "plastic_volume_um3",
+                 "track_rq_nm", "track_mean_wear_nm"};
   for (const pt::IterationRecord& it : r.iterations) {
     its.add_row({double(it.iteration), double(it.particles), it.mean_eq_radius * 1e9,
                  it.max_pressure / 1e6, it.load, it.contact_fraction, it.capped_fraction,
                  double(it.cg_iterations), double(it.contact_converged),
-                 double(it.stress_levels)});
+                 double(it.stress_levels), it.particle_volume * 1e18,
+                 it.plastic_volume * 1e18, it.track_rq * 1e9, it.track_mean_wear * 1e9});
   }
   io::write_csv(dir / "iterations.csv", its);
   io::write_file_atomic(dir / "pressure_map_MPa.csv",
@@ -123,12 +125,20 @@ void run_particles(const ParticlesOptions& o) {
   const pt::RunLengths run = pt::resolve_run_lengths(c);
   j["run"] = {{"pass_iterations", run.pass}, {"block_iterations", run.block},
               {"min_iterations", run.min_iterations}, {"max_iterations", run.max_iterations},
-              {"steady_tolerance", c.steady_tolerance}};
+              {"steady_tolerance", c.steady_tolerance},
+              {"roughness_tolerance", c.roughness_tolerance},
+              {"track_factor", c.track_factor}, {"slide_cells", c.slide_cells}};
+  if (!r.iterations.empty()) {
+    j["track_rq_nm"] = {{"initial", r.initial_track_rq * 1e9},
+                        {"final", r.iterations.back().track_rq * 1e9}};
+    j["track_mean_wear_nm"] = r.iterations.back().track_mean_wear * 1e9;
+  }
   j["all_particles"] = size_json(r.all);
   j["pair"] = c.pair;
   j["load_N"] = c.load;
   j["window_load_N"] = pt::window_load(c);
   j["friction"] = c.friction;
+  j["plastic_deformation"] = c.plastic_deformation;
   j["cylinder_radius_mm"] = c.cylinder_radius * 1e3;
   j["cylinder_length_mm"] = c.cylinder_length * 1e3;
   j["grid"] = {{"nx", c.grid.nx}, {"ny", c.grid.ny}, {"dx_nm", c.grid.dx * 1e9},
@@ -165,8 +175,8 @@ void add_particles_command(CLI::App& app) {
                   "steel-steel|steel-brass|uhmwpe-cocr|peek-cocr|cfrpeek-cocr");
   cmd->add_option("--load-N", opts->load_N, "normal load on the cylinder [N]");
   cmd->add_option("--out", opts->out, "output folder")->capture_default_str();
-  cmd->add_option("--max-iterations", opts->max_iterations, "wear-loop iteration limit (default: 12 passes of the track, 192 iterations at the "
-                  "defaults; the loop stops earlier at a steady state)");
+  cmd->add_option("--max-iterations", opts->max_iterations, "wear-loop iteration limit (default: 40 blocks of two passes of the track, 640 "
+                  "iterations at the defaults; the loop stops earlier at the run-in steady state)");
   cmd->add_flag("--no-film", opts->no_film, "drop transfer films (homogeneous model)");
   cmd->add_flag("--no-plots", opts->no_plots, "skip the PNG plots");
   cmd->callback([opts]() { run_particles(*opts); });

@@ -197,9 +197,18 @@ ContactResult solve_contact(const DeflectionOperator& op, const std::vector<doub
   // final deflection, approach and gap
   op.apply(p.data(), u.data());
   const double n_set = row_sum(nx, ny, [&](long k) { return in_set(k) ? 1.0 : 0.0; });
-  res.approach = n_set > 0.0
-                     ? row_sum(nx, ny, [&](long k) { return in_set(k) ? u[k] + h[k] : 0.0; }) / n_set
-                     : 0.0;
+  if (n_set > 0.0) {
+    res.approach = row_sum(nx, ny, [&](long k) { return in_set(k) ? u[k] + h[k] : 0.0; }) / n_set;
+  } else {
+    // fully plastic: no elastic cell fixes the approach; any value between the capped cells'
+    // h + u and the open cells' is consistent, and the capped cell of least interference
+    // (largest h + u) touching exactly gives the smallest plastic interference
+    res.approach = -std::numeric_limits<double>::infinity();
+    for (long k = 0; k < n; ++k) {
+      if (p[k] > 0.0) res.approach = std::max(res.approach, h[k] + u[k]);
+    }
+    if (!std::isfinite(res.approach)) res.approach = 0.0;
+  }
   for (long k = 0; k < n; ++k) gap[k] = h[k] + u[k] - res.approach;
   res.load = area * ordered_sum(p, nx, ny);
   res.contact_fraction = row_sum(nx, ny, [&](long k) { return p[k] > 0.0 ? 1.0 : 0.0; }) / n;

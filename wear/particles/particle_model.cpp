@@ -29,6 +29,13 @@ std::vector<double> make_body_surface(const BodySpec& body, const Grid& grid,
   return std::vector<double>(map.height.begin(), map.height.begin() + grid.size());
 }
 
+// the last two changes of a block series are each within tol of the earlier value
+bool settled(const std::vector<double>& v, double tol) {
+  const std::size_t n = v.size();
+  auto close = [&](double a, double b) { return std::abs(b - a) <= tol * std::max(std::abs(a), 1e-300); };
+  return n >= 3 && close(v[n - 3], v[n - 2]) && close(v[n - 2], v[n - 1]);
+}
+
 }  // namespace
 
 double window_load(const ParticleModelConfig& c) {
@@ -59,9 +66,9 @@ RunLengths resolve_run_lengths(const ParticleModelConfig& c) {
   r.pass = c.slide_cells > 0
                ? static_cast<int>((track_rows + c.slide_cells - 1) / c.slide_cells)
                : 1;  // a track that does not move: every iteration sees the same rows
-  r.block = c.block > 0 ? c.block : r.pass;
-  r.max_iterations = c.max_iterations > 0 ? c.max_iterations : 12 * r.pass;
-  r.min_iterations = std::min(c.min_iterations > 0 ? c.min_iterations : 3 * r.pass,
+  r.block = c.block > 0 ? c.block : 2 * r.pass;
+  r.max_iterations = c.max_iterations > 0 ? c.max_iterations : 40 * r.block;
+  r.min_iterations = std::min(c.min_iterations > 0 ? c.min_iterations : 3 * r.block,
                               r.max_iterations);
   return r;
 }
@@ -93,7 +100,16 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
   std::vector<double> track = make_body_surface(c.softer, track_grid, source);
   const int ntrack = static_cast<int>(track.size() / ny);
   track_grid.nx = ntrack;
+  ParticleModelResult res;
   std::vector<double> removed(track.size());
+  double track_mean0 = 0.0;
+  for (double z : track) track_mean0 += z;
+  track_mean0 /= static_cast<double>(track.size());
+  {
+    double sq = 0.0;
+    for (double z : track) sq += (z - track_mean0) * (z - track_mean0);
+    res.initial_track_rq = std::sqrt(sq / static_cast<double>(track.size()));
+  }
 
   DeflectionOperator op(g, c.harder.elastic, c.softer.elastic);
   SubsurfaceStress stress(g, c.softer.elastic.poisson_ratio);
@@ -101,14 +117,14 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
   opt.load = load;
   opt.hardness = c.softer.hardness;
   opt.tolerance = 1e-6;
-  opt.max_iterations = 100;
+  opt.max_iterations = 40;
 
-  ParticleModelResult res;
   std::vector<double> h(n);
   std::vector<double> levels(static_cast<long>(c.nz) * n);
   const int refine = std::max(1, c.refine);
-  std::vector<double> block_means;
+  std::vector<double> block_means, block_rq;
   const RunLengths run = resolve_run_lengths(c);
+  bool track_changed = false;  // by a particle or a plastic set since the start
   int it = 0;
   for (it = 1; it <= run.max_iterations; ++it) {
     // gap: cylinder profile minus both rough surfaces at this track position
@@ -147,11 +163,23 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
     // short wavelengths that each grid resolves at its own spacing, and the worn track, unlike
     // the first contact, would not converge with the grid (R 152 / 129 / 102 nm at 160² /
     // 240² / 320²). The filter keeps the removed volume.
+    // plastic set: where the pressure is at the cap the track's asperities overlap the
+    // deformed cylinder by -gap; that height flows away for good (elastic-perfectly plastic
+    // contact, the softer body yields), so the next pass meets the flattened track
+    double plastic_sum = 0.0;
     std::fill(removed.begin(), removed.end(), 0.0);
     for (int i = 0; i < nx; ++i) {
       const long row = (offset + i) % ntrack;
-      for (int j = 0; j < ny; ++j) removed[row * ny + j] = det.removed_depth[static_cast<long>(i) * ny + j];
+      for (int j = 0; j < ny; ++j) {
+        const long k = static_cast<long>(i) * ny + j;
+        const double plastic = c.plastic_deformation && cr.pressure[k] >= c.softer.hardness
+                                   ? std::max(0.0, -cr.gap[k])
+                                   : 0.0;
+        plastic_sum += plastic;
+        removed[row * ny + j] = det.removed_depth[k] + plastic;
+      }
     }
+    track_changed = track_changed || plastic_sum > 0.0 || !det.particles.empty();
     apply_lambda_s_filter(track_grid, c.softer.roughness.lambda_s, removed);
     for (std::size_t k = 0; k < track.size(); ++k) track[k] -= removed[k];
     // records
@@ -169,6 +197,16 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
     rec.capped_fraction = cr.capped_fraction;
     rec.cg_iterations = cr.iterations;
     rec.stress_levels = computed;
+    rec.plastic_volume = plastic_sum * g.cell_area();
+    {
+      double mean = 0.0, sq = 0.0;
+      for (double z : track) mean += z;
+      mean /= static_cast<double>(track.size());
+      for (double z : track) sq += (z - mean) * (z - mean);
+      rec.track_rq = std::sqrt(sq / static_cast<double>(track.size()));
+      rec.track_mean_wear = track_mean0 - mean;
+    }
+    for (const Particle& p : det.particles) rec.particle_volume += p.volume;
     res.iterations.push_back(rec);
     if (it == 1) {
       // maps of the first (unworn) contact for the plots: pressure, and a vM section
@@ -185,25 +223,26 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
       }
     }
     if (progress) progress(double(it) / run.max_iterations);
-    // nothing detached over a whole pass: the track is unchanged, and when the slide divides
+    // nothing detached or flattened over a whole pass: the track is unchanged, and when the slide divides
     // the track the next passes meet the same rows at the same offsets, so they would repeat
     // this pass exactly (UHMWPE and CFR-PEEK on CoCr: no yielded region reaches the surface)
-    if (res.particles.empty() && it == run.pass && c.slide_cells > 0 &&
+    if (!track_changed && it == run.pass && c.slide_cells > 0 &&
         ntrack % c.slide_cells == 0) {
       res.steady_state = true;
       break;
     }
-    // steady state: block means of the equivalent radius
+    // steady state: block means of the equivalent radius and of the track's roughness, each
+    // settled over the last two block changes
     if (it % run.block == 0) {
       const SizeStats b = calc_size_stats(res.particles, it - run.block + 1);
+      double rq = 0.0;
+      for (int k = it - run.block; k < it; ++k) rq += res.iterations[k].track_rq / run.block;
       block_means.push_back(b.eq_radius);
-      const std::size_t nb = block_means.size();
-      if (it >= run.min_iterations && nb >= 2) {
-        const double prev = block_means[nb - 2], cur = block_means[nb - 1];
-        if (std::abs(cur - prev) <= c.steady_tolerance * std::max(prev, 1e-300)) {
-          res.steady_state = true;
-          break;
-        }
+      block_rq.push_back(rq);
+      if (it >= run.min_iterations && block_means.size() >= 3 &&
+          settled(block_means, c.steady_tolerance) && settled(block_rq, c.roughness_tolerance)) {
+        res.steady_state = true;
+        break;
       }
     }
   }

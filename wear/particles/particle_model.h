@@ -39,6 +39,10 @@ struct IterationRecord {
   double capped_fraction = 0.0;   // share at p = H [-]
   int cg_iterations = 0;          // [-]
   int stress_levels = 0;          // levels computed [-]
+  double particle_volume = 0.0;   // detached this iteration [m^3]
+  double plastic_volume = 0.0;    // permanent set taken off the track this iteration [m^3]
+  double track_rq = 0.0;          // rms roughness of the whole worn track after it [m]
+  double track_mean_wear = 0.0;   // mean depth worn and flattened off the track so far [m]
 };
 
 struct SizeStats {
@@ -60,6 +64,7 @@ struct ParticleModelResult {
   std::vector<double> pressure;   // first iteration's pressure, grid.size() [Pa]
   std::vector<double> von_mises_section;  // first iteration: nz x nx at the y of peak p [Pa]
   int section_levels = 0;         // levels in the section [-]
+  double initial_track_rq = 0.0;  // rms roughness of the unworn track [m]
   double seconds = 0.0;           // wall time [s]
 };
 

@@ -66,6 +66,13 @@ struct Reader {
     if (!v) throw InputError(where(section, key, *e) + " = " + io::describe(e->value) + " must be a string");
     return *v;
   }
+  void flag(const std::string& section, const std::string& key, bool& target) const {
+    const io::TomlEntry* e = find(section, key);
+    if (e == nullptr) return;
+    const bool* v = std::get_if<bool>(&e->value);
+    if (!v) throw InputError(where(section, key, *e) + " = " + io::describe(e->value) + " must be true or false");
+    target = *v;
+  }
   void reject_unread() const {
     for (const auto& [key, e] : doc) {
       if (read.count(key) == 0) {
@@ -109,6 +116,7 @@ ParticleModelConfig read_particle_config(const std::filesystem::path& path) {
   r.set("", "friction", c.friction, 1.0, 0.0, 2.0);
   r.set("", "cylinder_radius_mm", c.cylinder_radius, 1e-3, 1e-6, 1e6);
   r.set("", "cylinder_length_mm", c.cylinder_length, 1e-3, 1e-6, 1e6);
+  r.flag("", "plastic_deformation", c.plastic_deformation);
   // grid sizes are checked against memory by check_grid when the run starts
   r.set_int("grid", "nx", c.grid.nx, -1e9, 1e9);
   r.set_int("grid", "ny", c.grid.ny, -1e9, 1e9);
@@ -123,6 +131,7 @@ ParticleModelConfig read_particle_config(const std::filesystem::path& path) {
   r.set_int("run", "slide_cells", c.slide_cells, 0, 1e9);
   r.set_int("run", "track_factor", c.track_factor, 1, 64);
   r.set("run", "steady_tolerance", c.steady_tolerance, 1.0, 0.0, 10.0);
+  r.set("run", "roughness_tolerance", c.roughness_tolerance, 1.0, 0.0, 10.0);
   read_body(r, "harder", c.harder);
   read_body(r, "softer", c.softer);
   r.reject_unread();

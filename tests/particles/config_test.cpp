@@ -80,3 +80,14 @@ TEST_CASE("particle config: plastic_deformation is a boolean, roughness_toleranc
   const std::string range = error_of(tmp.write("m.toml", "[run]\nroughness_tolerance = -1\n"));
   CHECK(range.find("roughness_tolerance") != std::string::npos);
 }
+
+TEST_CASE("particle config: a transfer film needs its yield stress") {
+  TempDir tmp;
+  const std::string missing = error_of(tmp.write(
+      "f.toml", "pair = \"steel-steel\"\n[harder]\nfilm_thickness_nm = 300\nfilm_E_GPa = 88\n"));
+  CHECK(missing.find("film_yield_GPa") != std::string::npos);
+  const pt::ParticleModelConfig c = pt::read_particle_config(tmp.write(
+      "g.toml", "pair = \"steel-steel\"\n[harder]\nfilm_thickness_nm = 300\nfilm_E_GPa = 88\n"
+                "film_yield_GPa = 0.5\n"));
+  CHECK(c.harder.film_yield_stress == doctest::Approx(0.5e9));
+}

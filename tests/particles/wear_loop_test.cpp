@@ -77,3 +77,29 @@ TEST_CASE("wear loop: a flattened track pressed again at the same place hardly f
   CHECK(r0.iterations[1].plastic_volume == 0.0);
   CHECK(r0.iterations[1].capped_fraction == doctest::Approx(r0.iterations[0].capped_fraction));
 }
+
+// Reference: the counterface sheds only from its transfer film, whose underside bounds the
+// particles (the substrate is the harder body's own material, which does not wear); the
+// interpolated voxels between the film's last level and the next one can add at most one
+// level spacing (film / ceil(film / dz) = 50 nm here).
+TEST_CASE("wear loop: transfer-film particles are at most the film thick; no film, none") {
+  ParticleModelConfig c = make_pair_config(PairName::kSteelBrass);
+  c.grid = Grid{64, 64, 102e-9, 102e-9, true};
+  c.nz = 16;
+  c.slide_cells = 16;
+  c.load = 0.2;
+  c.min_iterations = c.max_iterations = 2;
+  c.harder.elastic.film_thickness = 100e-9;
+  const ParticleModelResult r = run_particle_model(c, "test");
+  long film = 0;
+  for (const ParticleRecord& p : r.particles) {
+    if (p.source != ParticleSource::kCounterface) continue;
+    ++film;
+    CHECK(p.particle.thickness <= 150e-9 + 1e-12);
+  }
+  CHECK(film > 0);
+  CHECK(r.iterations[0].counterface_particles + r.iterations[1].counterface_particles == film);
+  c.harder.elastic.film_thickness = 0.0;
+  const ParticleModelResult r0 = run_particle_model(c, "test");
+  for (const ParticleRecord& p : r0.particles) CHECK(p.source == ParticleSource::kSofter);
+}

@@ -67,6 +67,7 @@ nlohmann::json body_json(const pt::BodySpec& b) {
           {"peklenik_gamma", b.roughness.gamma},
           {"film_thickness_nm", b.elastic.film_thickness * 1e9},
           {"film_E_GPa", b.elastic.film_modulus / 1e9},
+          {"film_yield_GPa", b.film_yield_stress / 1e9},
           {"surface_csv", b.surface_csv}};
 }
 
@@ -93,19 +94,22 @@ void run_particles(const ParticlesOptions& o) {
   // outputs
   const std::filesystem::path dir(o.out);
   io::Table parts;
-  parts.columns = {"iteration", "volume_um3", "eq_radius_nm", "length_nm", "width_nm", "thickness_nm"};
+  parts.columns = {"iteration", "volume_um3", "eq_radius_nm", "length_nm", "width_nm", "thickness_nm",
+                   "from_counterface"};
   for (const pt::ParticleRecord& p : r.particles) {
     parts.add_row({double(p.iteration), p.particle.volume * 1e18, p.particle.eq_radius * 1e9,
-                   p.particle.length * 1e9, p.particle.width * 1e9, p.particle.thickness * 1e9});
+                   p.particle.length * 1e9, p.particle.width * 1e9, p.particle.thickness * 1e9,
+                   p.source == pt::ParticleSource::kCounterface ? 1.0 : 0.0});
   }
   io::write_csv(dir / "particles.csv", parts);
   io::Table its;
-  its.columns = {"iteration", "particles", "mean_eq_radius_nm", "max_pressure_MPa", "load_N",
+  its.columns = {"iteration", "particles", "counterface_particles", "mean_eq_radius_nm", "max_pressure_MPa", "load_N",
                  "contact_fraction", "capped_fraction", "cg_iterations", "cg_converged",
                  "stress_levels", "particle_volume_um3", "plastic_volume_um3",
                  "track_rq_nm", "track_mean_wear_nm"};
   for (const pt::IterationRecord& it : r.iterations) {
-    its.add_row({double(it.iteration), double(it.particles), it.mean_eq_radius * 1e9,
+    its.add_row({double(it.iteration), double(it.particles), double(it.counterface_particles),
+                 it.mean_eq_radius * 1e9,
                  it.max_pressure / 1e6, it.load, it.contact_fraction, it.capped_fraction,
                  double(it.cg_iterations), double(it.contact_converged),
                  double(it.stress_levels), it.particle_volume * 1e18,
@@ -134,6 +138,7 @@ void run_particles(const ParticlesOptions& o) {
     j["track_mean_wear_nm"] = r.iterations.back().track_mean_wear * 1e9;
   }
   j["all_particles"] = size_json(r.all);
+  j["counterface_particles"] = size_json(r.steady_counterface);
   j["pair"] = c.pair;
   j["load_N"] = c.load;
   j["window_load_N"] = pt::window_load(c);

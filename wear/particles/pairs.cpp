@@ -119,6 +119,7 @@ ParticleModelConfig make_pair_config(PairName pair) {
       c.harder.elastic.film_thickness = 0.5e-6;
       c.harder.elastic.film_modulus = 88e9;
       c.harder.elastic.film_poisson = 0.3;
+      c.harder.film_yield_stress = 0.94e9;  // the film is brass from the disk
       c.sources = "particle-size study (physics.md section 9): brass disk E 88 GPa, H 2.64 GPa, "
                   "sigma_y 0.94 GPa, Rq 760 nm, skewness -1, kurtosis 4.94, mu 0.3; brass transfer "
                   "film 0.5 um on the cylinder, correlation length 2 um along sliding, lay gamma 2 and "

@@ -20,6 +20,7 @@ struct BodySpec {
   double yield_stress = 0.0;// sigma_y [Pa]
   SurfaceSpec roughness;    // Rq, skewness, kurtosis, correlation length, seed
   std::string surface_csv;  // measured height map replacing the generated one; empty = none
+  double film_yield_stress = 0.0;  // sigma_y of the transfer film, when there is one [Pa]
 };
 
 struct ParticleModelConfig {

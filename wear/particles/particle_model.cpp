@@ -7,6 +7,7 @@
 
 #include "engine/errors.h"
 #include "wear/particles/contact.h"
+#include "wear/particles/counterface.h"
 #include "wear/particles/height_map.h"
 #include "wear/particles/stress.h"
 
@@ -42,10 +43,11 @@ double window_load(const ParticleModelConfig& c) {
   return c.load / c.cylinder_length * (c.grid.ny * c.grid.dy);
 }
 
-SizeStats calc_size_stats(const std::vector<ParticleRecord>& particles, int first_iteration) {
+SizeStats calc_size_stats(const std::vector<ParticleRecord>& particles, int first_iteration,
+                          const ParticleSource* only) {
   SizeStats s;
   for (const ParticleRecord& r : particles) {
-    if (r.iteration < first_iteration) continue;
+    if (r.iteration < first_iteration || (only != nullptr && r.source != *only)) continue;
     ++s.particles;
     s.eq_radius += r.particle.eq_radius;
     s.length += r.particle.length;
@@ -113,6 +115,7 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
 
   DeflectionOperator op(g, c.harder.elastic, c.softer.elastic);
   SubsurfaceStress stress(g, c.softer.elastic.poisson_ratio);
+  CounterfaceYield counterface(c);
   ContactOptions opt;
   opt.load = load;
   opt.hardness = c.softer.hardness;
@@ -185,11 +188,18 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
     // records
     IterationRecord rec;
     rec.iteration = it;
-    rec.particles = static_cast<int>(det.particles.size());
+    // the counterface's (its transfer film's) particles under the same pressure
+    const std::vector<Particle> from_counterface = counterface.find(cr.pressure);
+    rec.particles = static_cast<int>(det.particles.size() + from_counterface.size());
     for (const Particle& p : det.particles) {
-      res.particles.push_back({it, p});
-      rec.mean_eq_radius += p.eq_radius / det.particles.size();
+      res.particles.push_back({it, p, ParticleSource::kSofter});
+      rec.mean_eq_radius += p.eq_radius / rec.particles;
     }
+    for (const Particle& p : from_counterface) {
+      res.particles.push_back({it, p, ParticleSource::kCounterface});
+      rec.mean_eq_radius += p.eq_radius / rec.particles;
+    }
+    rec.counterface_particles = static_cast<int>(from_counterface.size());
     rec.max_pressure = *std::max_element(cr.pressure.begin(), cr.pressure.end());
     rec.load = cr.load;
     rec.contact_converged = cr.converged;
@@ -249,6 +259,8 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
   const int last = std::min(it, run.max_iterations);
   res.steady_from = std::max(1, last - 2 * run.block + 1);
   res.steady = calc_size_stats(res.particles, res.steady_from);
+  const ParticleSource film = ParticleSource::kCounterface;
+  res.steady_counterface = calc_size_stats(res.particles, res.steady_from, &film);
   res.all = calc_size_stats(res.particles, 1);
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return res;

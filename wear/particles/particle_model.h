@@ -23,14 +23,20 @@
 
 namespace kneesim::particles {
 
+// which body a particle came from: the worn softer body, or the counterface (in practice its
+// transfer film, which is softer than the counterface's own material)
+enum class ParticleSource { kSofter, kCounterface };
+
 struct ParticleRecord {
   int iteration = 0;  // [-]
   Particle particle;
+  ParticleSource source = ParticleSource::kSofter;
 };
 
 struct IterationRecord {
   int iteration = 0;              // [-]
-  int particles = 0;              // detached this iteration [-]
+  int particles = 0;              // detached this iteration, both bodies [-]
+  int counterface_particles = 0;  // of which from the counterface (its film) [-]
   double mean_eq_radius = 0.0;    // over this iteration's particles [m]
   double max_pressure = 0.0;      // [Pa]
   double load = 0.0;              // carried by the contact pressure [N]
@@ -57,7 +63,8 @@ struct SizeStats {
 struct ParticleModelResult {
   std::vector<ParticleRecord> particles;
   std::vector<IterationRecord> iterations;
-  SizeStats steady;               // means over the last two blocks
+  SizeStats steady;               // means over the last two blocks, particles of both bodies
+  SizeStats steady_counterface;   // the same window, counterface (film) particles only
   SizeStats all;                  // means over every particle
   bool steady_state = false;      // block criterion met before max_iterations [-]
   int steady_from = 0;            // first iteration of the reported window [-]
@@ -86,7 +93,8 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& config,
 // the contact window's share of the cylinder load [N]
 double window_load(const ParticleModelConfig& config);
 
-// mean sizes of a set of particles
-SizeStats calc_size_stats(const std::vector<ParticleRecord>& particles, int first_iteration);
+// mean sizes of a set of particles (from `first_iteration` on; of one source when given)
+SizeStats calc_size_stats(const std::vector<ParticleRecord>& particles, int first_iteration,
+                          const ParticleSource* only = nullptr);
 
 }  // namespace kneesim::particles

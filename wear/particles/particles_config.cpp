@@ -99,8 +99,12 @@ void read_body(const Reader& r, const std::string& s, BodySpec& b) {
   r.set(s, "film_thickness_nm", b.elastic.film_thickness, 1e-9, 0.0, 1e6);
   r.set(s, "film_E_GPa", b.elastic.film_modulus, 1e9, 0.0, 2000);
   r.set(s, "film_nu", b.elastic.film_poisson, 1.0, 0.0, 0.499);
+  r.set(s, "film_yield_GPa", b.film_yield_stress, 1e9, 0.0, 100);
   if (b.elastic.film_thickness > 0.0 && !(b.elastic.film_modulus > 0.0)) {
     throw InputError(r.file + ": [" + s + "] film_E_GPa must be > 0 when film_thickness_nm > 0");
+  }
+  if (b.elastic.film_thickness > 0.0 && !(b.film_yield_stress > 0.0)) {
+    throw InputError(r.file + ": [" + s + "] film_yield_GPa must be > 0 when film_thickness_nm > 0");
   }
   b.surface_csv = r.text(s, "surface_csv", b.surface_csv);
 }

@@ -26,7 +26,6 @@ CounterfaceYield::CounterfaceYield(const ParticleModelConfig& c)
                                                        b.elastic.film_poisson,
                                                        b.elastic.youngs_modulus,
                                                        b.elastic.poisson_ratio);
-  levels_.assign(static_cast<long>(nz_) * grid_.size(), 0.0);
 }
 
 void CounterfaceYield::ratio_level(int k, double* out) {
@@ -47,21 +46,8 @@ std::vector<Particle> CounterfaceYield::find(const std::vector<double>& pressure
   computed_ = 0;
   if (!active_) return {};
   layered_->set_traction(pressure, -friction_);
-  const long n = grid_.size();
-  // from the surface down to the first level with no yielded cell (a surface-reaching region
-  // cannot pass through it)
-  for (int k = 0; k < nz_; ++k) {
-    double* r = levels_.data() + static_cast<long>(k) * n;
-    ratio_level(k, r);
-    computed_ = k + 1;
-    const bool yielded = std::any_of(r, r + n, [](double v) { return v > 1.0; });
-    if (!yielded && k >= 1) break;
-  }
-  if (computed_ < 2) return {};
-  const std::vector<double> coarse(levels_.begin(), levels_.begin() + static_cast<long>(computed_) * n);
-  const int nfine = (computed_ - 1) * refine_;
-  return find_particles(refine_levels(coarse, n, computed_, refine_), grid_, nfine, dz_ / refine_,
-                        1.0)
+  return find_particles_from_levels([&](int k, double* r) { ratio_level(k, r); }, grid_, nz_,
+                                    dz_, refine_, 1.0, levels_, &computed_)
       .particles;
 }
 

@@ -34,8 +34,6 @@ class CounterfaceYield {
   bool active() const { return active_; }
   // the counterface's particles under the contact pressure (grid.size(), [Pa])
   std::vector<Particle> find(const std::vector<double>& pressure);
-  // depth levels computed in the last call [-]
-  int levels_computed() const { return computed_; }
 
  private:
   // yield-stress ratio vm / sigma_y of the film at depth level k into out (0 below the film)
@@ -51,7 +49,7 @@ class CounterfaceYield {
   int refine_ = 1;              // [-]
   std::unique_ptr<LayeredSubsurfaceStress> layered_;
   std::vector<double> levels_;  // nz_ x grid cells of ratios
-  int computed_ = 0;
+  int computed_ = 0;            // levels computed in the last call [-]
 };
 
 }  // namespace kneesim::particles

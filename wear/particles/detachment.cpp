@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "wear/particles/stress.h"
+
 namespace kneesim::particles {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
@@ -80,6 +82,26 @@ Detachment find_particles(const std::vector<double>& vm, const Grid& g, int nz, 
       out.particles.push_back(p);
     }
   return out;
+}
+
+Detachment find_particles_from_levels(const std::function<void(int, double*)>& level,
+                                      const Grid& grid, int nz, double dz, int refine,
+                                      double threshold, std::vector<double>& levels,
+                                      int* computed) {
+  const long n = grid.size();
+  levels.resize(static_cast<long>(nz) * n);
+  int count = 0;
+  for (int k = 0; k < nz; ++k) {
+    double* v = levels.data() + static_cast<long>(k) * n;
+    level(k, v);
+    count = k + 1;
+    const bool above = std::any_of(v, v + n, [&](double x) { return x > threshold; });
+    if (!above && k >= 1) break;
+  }
+  if (computed != nullptr) *computed = count;
+  // refine_levels reads only the first `count` levels of the scratch
+  return find_particles(refine_levels(levels, n, count, refine), grid, (count - 1) * refine,
+                        dz / refine, threshold);
 }
 
 }  // namespace kneesim::particles

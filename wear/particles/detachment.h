@@ -6,6 +6,7 @@
 // zones, not particles.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "wear/particles/grid.h"
@@ -30,5 +31,16 @@ struct Detachment {
 // l dz .. (l + 1) dz)
 Detachment find_particles(const std::vector<double>& von_mises, const Grid& grid, int nz,
                           double dz, double yield_stress);
+
+// particles from a field computed level by level from the surface down: level(k, out) writes
+// depth level z_k = k dz (grid.size() values, compared with `threshold`). The levels stop at
+// the first one below the surface with no value above the threshold (a surface-reaching
+// region cannot pass through it), at most nz, and are refined `refine` times by linear
+// interpolation before labelling. `levels` is scratch for nz x grid.size() values;
+// *computed gets the number of levels computed.
+Detachment find_particles_from_levels(const std::function<void(int, double*)>& level,
+                                      const Grid& grid, int nz, double dz, int refine,
+                                      double threshold, std::vector<double>& levels,
+                                      int* computed = nullptr);
 
 }  // namespace kneesim::particles

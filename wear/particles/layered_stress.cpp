@@ -103,18 +103,12 @@ LayeredSubsurfaceStress::LayeredSubsurfaceStress(const Grid& grid, double film_t
                                                  double film_modulus, double film_poisson,
                                                  double substrate_modulus,
                                                  double substrate_poisson)
-    : grid_(grid),
-      t_(film_thickness),
-      nu_f_(film_poisson),
-      nu_s_(substrate_poisson),
-      npx_(2 * grid.nx),
-      npy_(grid.periodic_y ? grid.ny : 2 * grid.ny),
-      fft_(npx_, npy_) {
+    : t_(film_thickness), nu_f_(film_poisson), nu_s_(substrate_poisson), spectra_(grid) {
   assert(film_thickness > 0.0 && film_modulus > 0.0 && substrate_modulus > 0.0);
   const double gf = film_modulus / (2.0 * (1.0 + film_poisson));
   const double gs = substrate_modulus / (2.0 * (1.0 + substrate_poisson));
   const double t = t_, nuf = nu_f_, nus = nu_s_, ratio = gf / gs;
-  const int nc = fft_.nyc(), nrow = npx_ / 2 + 1, npx = npx_, npy = npy_;
+  const int nc = spectra_.nyc(), npx = spectra_.npx(), npy = spectra_.npy(), nrow = npx / 2 + 1;
   const double dx = grid.dx, dy = grid.dy;
 
   // the responses depend on |k| only: one row per |kx|
@@ -148,32 +142,18 @@ LayeredSubsurfaceStress::LayeredSubsurfaceStress(const Grid& grid, double film_t
   const double e = -0.5 * u1_mean / gf;
   mean_xx_f_ = (film_modulus * e - nuf) / (1.0 - nuf);
   mean_xx_s_ = (substrate_modulus * e - nus) / (1.0 - nus);
-
-  const long nspec = static_cast<long>(npx_) * nc;
-  p_hat_.assign(nspec, Complex(0.0, 0.0));
-  for (auto& s : spec_) s.assign(nspec, Complex(0.0, 0.0));
-  real_.assign(static_cast<long>(npx_) * npy_, 0.0);
-  for (auto& cc : comp_) cc.assign(grid.size(), 0.0);
 }
 
 void LayeredSubsurfaceStress::set_traction(const std::vector<double>& pressure,
                                            double friction) {
   mu_ = friction;
-  const int nx = grid_.nx, ny = grid_.ny;
-  std::fill(real_.begin(), real_.end(), 0.0);
-  for (int i = 0; i < nx; ++i) {
-    std::copy(pressure.begin() + static_cast<long>(i) * ny,
-              pressure.begin() + static_cast<long>(i + 1) * ny,
-              real_.begin() + static_cast<long>(i) * npy_);
-  }
-  fft_.forward(real_.data(), p_hat_.data(), nx);
-  const double norm = 1.0 / (double(npx_) * npy_);
-  for (Complex& c : p_hat_) c *= norm;
+  spectra_.set_pressure(pressure);
 }
 
-void LayeredSubsurfaceStress::calc_stress(double z, std::array<std::vector<double>, 6>& out) const {
+void LayeredSubsurfaceStress::fill_spectra(double z) const {
   assert(z >= 0.0);
-  const int nx = grid_.nx, ny = grid_.ny, npx = npx_, npy = npy_, nc = fft_.nyc();
+  const Grid& g = spectra_.grid();
+  const int npx = spectra_.npx(), npy = spectra_.npy(), nc = spectra_.nyc();
   const double mu = mu_, t = t_, nuf = nu_f_, nus = nu_s_;
   const bool film = z < t;
   const double nu = film ? nuf : nus;
@@ -183,22 +163,18 @@ void LayeredSubsurfaceStress::calc_stress(double z, std::array<std::vector<doubl
 #pragma omp parallel for schedule(static)
   for (int ix = 0; ix < npx; ++ix) {
     const int fx = ix <= npx / 2 ? ix : ix - npx;
-    const double kx = 2.0 * kPi * fx / (npx * grid_.dx);
+    const double kx = 2.0 * kPi * fx / (npx * g.dx);
     const double* row = &coef_[static_cast<long>(fx < 0 ? -fx : fx) * nc * kCoefs];
     for (int iy = 0; iy < nc; ++iy) {
       const long k = static_cast<long>(ix) * nc + iy;
-      const double ky = 2.0 * kPi * iy / (npy * grid_.dy);
-      const Complex P = p_hat_[k], Q = mu * p_hat_[k];
-      Complex sxx, syy, szz, sxy, sxz, syz;
+      const double ky = 2.0 * kPi * iy / (npy * g.dy);
+      const Complex P = spectra_.pressure(k), Q = mu * P;
       if (ix == npx / 2 || iy == npy / 2) {
         // Nyquist lines: odd responses cannot be represented; drop them
-        sxx = syy = szz = sxy = sxz = syz = 0.0;
+        spectra_.set(k, {});
       } else if (ix == 0 && iy == 0) {
         // mean traction: uniform normal and shear stress, shared in-plane strain (header)
-        sxx = syy = mean_xx * P;
-        szz = -P;
-        sxz = -Q;
-        sxy = syz = 0.0;
+        spectra_.set(k, {mean_xx * P, mean_xx * P, -P, 0.0, -Q, 0.0});
       } else {
         const double alpha = std::hypot(kx, ky), c = kx / alpha, s = ky / alpha;
         const double* cf = row + iy * kCoefs;
@@ -242,49 +218,20 @@ void LayeredSubsurfaceStress::calc_stress(double z, std::array<std::vector<doubl
         const Complex s22 = nu * (s11 + s33);  // plane strain
         const Complex s12 = i1 * r12 * q2;
         const Complex s23 = -r23 * q2;
-        // rotate to x, y
-        sxx = c * c * s11 + s * s * s22 - 2.0 * c * s * s12;
-        syy = s * s * s11 + c * c * s22 + 2.0 * c * s * s12;
-        sxy = c * s * (s11 - s22) + (c * c - s * s) * s12;
-        sxz = c * s13 - s * s23;
-        syz = s * s13 + c * s23;
-        szz = s33;
+        spectra_.set(k, rotate_plane_wave(c, s, s11, s22, s33, s12, s13, s23));
       }
-      spec_[0][k] = sxx;
-      spec_[1][k] = syy;
-      spec_[2][k] = szz;
-      spec_[3][k] = sxy;
-      spec_[4][k] = sxz;
-      spec_[5][k] = syz;
     }
   }
-  // back to space, keeping the unpadded part
-  for (int c = 0; c < 6; ++c) {
-    fft_.inverse(spec_[c].data(), real_.data(), nx);
-    out[c].resize(grid_.size());
-    for (int i = 0; i < nx; ++i) {
-      std::copy(real_.begin() + static_cast<long>(i) * npy,
-                real_.begin() + static_cast<long>(i) * npy + ny,
-                out[c].begin() + static_cast<long>(i) * ny);
-    }
-  }
+}
+
+void LayeredSubsurfaceStress::calc_stress(double z, std::array<std::vector<double>, 6>& out) const {
+  fill_spectra(z);
+  spectra_.to_grid(out);
 }
 
 void LayeredSubsurfaceStress::calc_von_mises(double z, double* vm) const {
-  calc_stress(z, comp_);
-  const long n = grid_.size();
-  for (long k = 0; k < n; ++k) {
-    vm[k] = von_mises(comp_[0][k], comp_[1][k], comp_[2][k], comp_[3][k], comp_[4][k],
-                      comp_[5][k]);
-  }
-}
-
-std::vector<double> calc_von_mises_field(const LayeredSubsurfaceStress& stress, int nz,
-                                         double dz) {
-  const long n = stress.grid().size();
-  std::vector<double> vm(static_cast<long>(nz) * n);
-  for (int k = 0; k < nz; ++k) stress.calc_von_mises(k * dz, vm.data() + k * n);
-  return vm;
+  fill_spectra(z);
+  spectra_.to_von_mises(vm);
 }
 
 }  // namespace kneesim::particles

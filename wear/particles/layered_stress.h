@@ -55,26 +55,19 @@ class LayeredSubsurfaceStress {
   // the von Mises stress at depth z into vm (grid.size()) [Pa]
   void calc_von_mises(double z, double* vm) const;
 
-  const Grid& grid() const { return grid_; }
+  const Grid& grid() const { return spectra_.grid(); }
 
  private:
-  Grid grid_;
+  // fills the spectra with the responses at depth z
+  void fill_spectra(double z) const;
+
   double t_;                 // film thickness [m]
   double nu_f_, nu_s_;       // Poisson ratios [-]
   double mean_xx_f_;         // zero-wavenumber sigma_xx = sigma_yy per unit P in the film [-]
   double mean_xx_s_;         // the same in the substrate [-]
   double mu_ = 0.0;
-  int npx_, npy_;
-  Fft2 fft_;
+  StressSpectra spectra_;
   std::vector<double> coef_;  // per (|kx|, ky): 6 unit P, 6 unit Q1, 3 antiplane, exp(-alpha t)
-  std::vector<Complex> p_hat_;                       // padded pressure spectrum
-  mutable std::array<std::vector<Complex>, 6> spec_; // scratch spectra
-  mutable std::vector<double> real_;                 // scratch padded field
-  mutable std::array<std::vector<double>, 6> comp_;  // scratch components
 };
-
-// von Mises field on nz levels z_k = k dz (k = 0 .. nz-1), level-major (k * grid.size() + cell)
-std::vector<double> calc_von_mises_field(const LayeredSubsurfaceStress& stress, int nz,
-                                         double dz);
 
 }  // namespace kneesim::particles

@@ -104,14 +104,8 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
   track_grid.nx = ntrack;
   ParticleModelResult res;
   std::vector<double> removed(track.size());
-  double track_mean0 = 0.0;
-  for (double z : track) track_mean0 += z;
-  track_mean0 /= static_cast<double>(track.size());
-  {
-    double sq = 0.0;
-    for (double z : track) sq += (z - track_mean0) * (z - track_mean0);
-    res.initial_track_rq = std::sqrt(sq / static_cast<double>(track.size()));
-  }
+  const SurfaceStats track0 = calc_surface_stats(track);
+  res.initial_track_rq = track0.rq;
 
   DeflectionOperator op(g, c.harder.elastic, c.softer.elastic);
   SubsurfaceStress stress(g, c.softer.elastic.poisson_ratio);
@@ -146,26 +140,13 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
     // plastic CG kept the old spots for 100 iterations (a copy of the previous iteration's
     // particles) in about a third of the iterations
     const ContactResult cr = solve_contact(op, h, opt);
-    // von Mises levels from the surface down until one has no yielded cell
+    // particles of the softer body: von Mises levels from the surface down, refined; their
+    // material leaves the track
     stress.set_traction(cr.pressure, c.friction);
     int computed = 0;
-    for (int k = 0; k < c.nz; ++k) {
-      double* vm = levels.data() + static_cast<long>(k) * n;
-      stress.calc_von_mises(k * c.dz, vm);
-      computed = k + 1;
-      const bool yielded = std::any_of(vm, vm + n, [&](double v) { return v > c.softer.yield_stress; });
-      if (!yielded && k >= 1) break;
-    }
-    // particles on the refined levels; their material leaves the track
-    const std::vector<double> fine(levels.begin(), levels.begin() + static_cast<long>(computed) * n);
-    const int nfine = (computed - 1) * refine;
-    const Detachment det = find_particles(refine_levels(fine, n, computed, refine), g, nfine,
-                                          c.dz / refine, c.softer.yield_stress);
-    // the removed depth is band-limited like the surfaces themselves (lambda_s of the worn
-    // body): a particle's voxel outline would otherwise cut one-cell cliffs into the track,
-    // short wavelengths that each grid resolves at its own spacing, and the worn track, unlike
-    // the first contact, would not converge with the grid (R 152 / 129 / 102 nm at 160² /
-    // 240² / 320²). The filter keeps the removed volume.
+    const Detachment det = find_particles_from_levels(
+        [&](int k, double* vm) { stress.calc_von_mises(k * c.dz, vm); }, g, c.nz, c.dz, refine,
+        c.softer.yield_stress, levels, &computed);
     // plastic set: where the pressure is at the cap the track's asperities overlap the
     // deformed cylinder by -gap; that height flows away for good (elastic-perfectly plastic
     // contact, the softer body yields), so the next pass meets the flattened track
@@ -183,6 +164,11 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
       }
     }
     track_changed = track_changed || plastic_sum > 0.0 || !det.particles.empty();
+    // the removed depth is band-limited like the surfaces themselves (lambda_s of the worn
+    // body): a particle's voxel outline would otherwise cut one-cell cliffs into the track,
+    // short wavelengths that each grid resolves at its own spacing, and the worn track, unlike
+    // the first contact, would not converge with the grid (R 152 / 129 / 102 nm at 160² /
+    // 240² / 320²). The filter keeps the removed volume.
     apply_lambda_s_filter(track_grid, c.softer.roughness.lambda_s, removed);
     for (std::size_t k = 0; k < track.size(); ++k) track[k] -= removed[k];
     // records
@@ -194,6 +180,7 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
     for (const Particle& p : det.particles) {
       res.particles.push_back({it, p, ParticleSource::kSofter});
       rec.mean_eq_radius += p.eq_radius / rec.particles;
+      rec.particle_volume += p.volume;
     }
     for (const Particle& p : from_counterface) {
       res.particles.push_back({it, p, ParticleSource::kCounterface});
@@ -208,15 +195,9 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
     rec.cg_iterations = cr.iterations;
     rec.stress_levels = computed;
     rec.plastic_volume = plastic_sum * g.cell_area();
-    {
-      double mean = 0.0, sq = 0.0;
-      for (double z : track) mean += z;
-      mean /= static_cast<double>(track.size());
-      for (double z : track) sq += (z - mean) * (z - mean);
-      rec.track_rq = std::sqrt(sq / static_cast<double>(track.size()));
-      rec.track_mean_wear = track_mean0 - mean;
-    }
-    for (const Particle& p : det.particles) rec.particle_volume += p.volume;
+    const SurfaceStats worn = calc_surface_stats(track);
+    rec.track_rq = worn.rq;
+    rec.track_mean_wear = track0.mean - worn.mean;
     res.iterations.push_back(rec);
     if (it == 1) {
       // maps of the first (unworn) contact for the plots: pressure, and a vM section

@@ -45,7 +45,7 @@ struct IterationRecord {
   double capped_fraction = 0.0;   // share at p = H [-]
   int cg_iterations = 0;          // [-]
   int stress_levels = 0;          // levels computed [-]
-  double particle_volume = 0.0;   // detached this iteration [m^3]
+  double particle_volume = 0.0;   // detached from the worn body this iteration [m^3]
   double plastic_volume = 0.0;    // permanent set taken off the track this iteration [m^3]
   double track_rq = 0.0;          // rms roughness of the whole worn track after it [m]
   double track_mean_wear = 0.0;   // mean depth worn and flattened off the track so far [m]

@@ -22,6 +22,45 @@ namespace kneesim::particles {
 
 enum class StressComponent { kXX = 0, kYY, kZZ, kXY, kXZ, kYZ };
 
+// The FFT side shared by the homogeneous and the layered stress fields: the pressure spectrum
+// on the zero-padded grid (normalised for the inverse), six stress spectra that a depth level
+// fills with its frequency responses, and the way back to the grid (inverse FFT, unpadded
+// part) with the von Mises stress from there.
+class StressSpectra {
+ public:
+  explicit StressSpectra(const Grid& grid);
+
+  void set_pressure(const std::vector<double>& pressure);
+  const Complex& pressure(long k) const { return p_hat_[k]; }
+  // stress spectra at frequency k, StressComponent order (scratch: one level at a time)
+  void set(long k, const std::array<Complex, 6>& stress) const {
+    for (int c = 0; c < 6; ++c) spec_[c][k] = stress[c];
+  }
+  // the six components of the spectra set, each grid.size() [Pa]
+  void to_grid(std::array<std::vector<double>, 6>& out) const;
+  // the von Mises stress of the spectra set, grid.size() [Pa]
+  void to_von_mises(double* vm) const;
+
+  const Grid& grid() const { return grid_; }
+  int npx() const { return npx_; }
+  int npy() const { return npy_; }
+  int nyc() const { return fft_.nyc(); }
+
+ private:
+  Grid grid_;
+  int npx_, npy_;
+  Fft2 fft_;
+  std::vector<Complex> p_hat_;                       // padded pressure spectrum
+  mutable std::array<std::vector<Complex>, 6> spec_; // stress spectra of one level
+  mutable std::vector<double> real_;                 // scratch padded field
+  mutable std::array<std::vector<double>, 6> comp_;  // scratch components
+};
+
+// the stresses of a plane wave along e1 = (c, s) (components 11, 22, 33, 12, 13, 23 in the
+// wave's frame) rotated to x, y, in StressComponent order
+std::array<Complex, 6> rotate_plane_wave(double c, double s, Complex s11, Complex s22,
+                                         Complex s33, Complex s12, Complex s13, Complex s23);
+
 class SubsurfaceStress {
  public:
   SubsurfaceStress(const Grid& grid, double poisson_ratio);
@@ -34,25 +73,29 @@ class SubsurfaceStress {
   // the von Mises stress at depth z into vm (grid.size()) [Pa]
   void calc_von_mises(double z, double* vm) const;
 
-  const Grid& grid() const { return grid_; }
+  const Grid& grid() const { return spectra_.grid(); }
 
  private:
-  Grid grid_;
+  // fills the spectra with the responses at depth z
+  void fill_spectra(double z) const;
+
   double nu_;
   double mu_ = 0.0;
-  int npx_, npy_;
-  Fft2 fft_;
-  std::vector<Complex> p_hat_;                       // padded pressure spectrum
-  mutable std::array<std::vector<Complex>, 6> spec_; // scratch spectra
-  mutable std::vector<double> real_;                 // scratch padded field
-  mutable std::array<std::vector<double>, 6> comp_;  // scratch components
+  StressSpectra spectra_;
 };
 
 // von Mises stress of a stress state [Pa]
 double von_mises(double sxx, double syy, double szz, double sxy, double sxz, double syz);
 
-// von Mises field on nz levels z_k = k dz (k = 0 .. nz-1), level-major (k * grid.size() + cell)
-std::vector<double> calc_von_mises_field(const SubsurfaceStress& stress, int nz, double dz);
+// von Mises field on nz levels z_k = k dz (k = 0 .. nz-1), level-major (k * grid.size() + cell),
+// of a SubsurfaceStress or a LayeredSubsurfaceStress
+template <class Stress>
+std::vector<double> calc_von_mises_field(const Stress& stress, int nz, double dz) {
+  const long n = stress.grid().size();
+  std::vector<double> vm(static_cast<long>(nz) * n);
+  for (int k = 0; k < nz; ++k) stress.calc_von_mises(k * dz, vm.data() + k * n);
+  return vm;
+}
 
 // vertical refinement by linear interpolation: `factor` voxels per level interval, voxel l
 // centred at depth (l + 0.5) dz / factor; returns (nz - 1) * factor levels

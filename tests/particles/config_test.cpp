@@ -91,3 +91,27 @@ TEST_CASE("particle config: a transfer film needs its yield stress") {
                 "film_yield_GPa = 0.5\n"));
   CHECK(c.harder.film_yield_stress == doctest::Approx(0.5e9));
 }
+
+// Reference: the flow rule's film hardness (particle_model.h): given, or 2.8 x the film's yield
+// stress (the study's H = 2.8 sigma_y); the brass preset's film is the disk's brass (2.64 GPa).
+TEST_CASE("particle config: film hardness and contact iterations") {
+  TempDir tmp;
+  CHECK(pt::make_pair_config(pt::PairName::kSteelBrass).harder.film_hardness == 2.64e9);
+  const pt::ParticleModelConfig c = pt::read_particle_config(tmp.write(
+      "h.toml", "pair = \"steel-steel\"\n[harder]\nfilm_thickness_nm = 300\nfilm_E_GPa = 88\n"
+                "film_yield_GPa = 0.5\n[run]\ncontact_max_iterations = 200\n"));
+  CHECK(c.harder.film_hardness == 0.0);
+  CHECK(pt::counterface_flow_hardness(c.harder) == doctest::Approx(1.4e9));
+  CHECK(c.contact_max_iterations == 200);
+  const pt::ParticleModelConfig d = pt::read_particle_config(tmp.write(
+      "i.toml", "pair = \"steel-brass\"\n[harder]\nfilm_hardness_GPa = 2.0\n"));
+  CHECK(pt::counterface_flow_hardness(d.harder) == doctest::Approx(2.0e9));
+  pt::BodySpec bare = d.harder;
+  bare.elastic.film_thickness = 0.0;  // no film: the counterface's own hardness
+  CHECK(pt::counterface_flow_hardness(bare) == 6e9);
+  const std::string bad = error_of(tmp.write("j.toml", "[run]\ncontact_max_iterations = 0\n"));
+  CHECK(bad.find("j.toml:2") != std::string::npos);
+  CHECK(bad.find("contact_max_iterations") != std::string::npos);
+  const std::string neg = error_of(tmp.write("k.toml", "[harder]\nfilm_hardness_GPa = -1\n"));
+  CHECK(neg.find("film_hardness_GPa") != std::string::npos);
+}

@@ -2,7 +2,7 @@
 // - its model values, steel-steel: length 442, width 245, thickness 197 nm at 10 N and
 //   267, 161, 151 nm at 2.5 N; acceptance (issue 5): within a factor of 2;
 // - its trends: particle size grows with load; the layered (transfer film) steel-brass model
-//   gives smaller particles than the homogeneous one; the softer surface's roughness barely
+//   gives smaller particles than the homogeneous one (required: R 5 % smaller or more); the softer surface's roughness barely
 //   changes the size while the harder surface's roughness does;
 // - equilibrium: every wear-loop contact carries the window's load, and no particle spans
 //   the whole periodic window.
@@ -101,15 +101,15 @@ TEST_CASE("steel-steel: particle size grows with load") {
   CHECK(steel(10.0).length > steel(2.5).length);
 }
 
-// Known gap (docs/particles.md, "Layered steel-brass"): the rough contact is fully plastic
-// (the uncapped elastic peaks would be 60-80 x H), so the film's lower composite modulus,
-// which lowers the elastic pressures by about 25 %, leaves the capped pressure and the disk's
-// particles within about 3 %; the film's own particles (layered stresses, film yield stress)
-// are as large as the disk's (R 126 vs 124 nm over 32 iterations). No surface input that
-// keeps the study's Rq 760 nm on this window makes the contact partly elastic (the surface
-// map in docs/particles.md); run, reported, allowed to fail
-TEST_CASE("steel-brass: the layered model gives smaller particles than the homogeneous one" *
-          doctest::may_fail()) {
+// Layered vs homogeneous steel-brass (docs/particles.md, "Layered steel-brass"). The brass
+// transfer film on the cylinder is as hard as the disk, so at the cap it flows with the disk
+// (the plastic flow rule); fixed to the window, it is flattened by every pass of the track's
+// asperities into a plateau that conforms to the track, the contact turns partly elastic
+// (about a third of the contact cells at H instead of four fifths) and the film's lower
+// modulus then lowers the pressure. Measured at 240²: R 64 vs 114 nm (preset seeds), 68 vs
+// 113 nm (seeds +100). Without the film's flow (the film only as an elastic layer and a
+// source of particles) the contact stayed fully plastic and the sizes differed by 0.4 %.
+TEST_CASE("steel-brass: the layered model gives smaller particles than the homogeneous one") {
   const SizeStats layered = run(Case{PairName::kSteelBrass, 10.0, 1.0, 1.0, true});
   const SizeStats homogeneous = run(Case{PairName::kSteelBrass, 10.0, 1.0, 1.0, false});
   CHECK(layered.eq_radius < 0.95 * homogeneous.eq_radius);

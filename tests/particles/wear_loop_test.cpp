@@ -103,3 +103,82 @@ TEST_CASE("wear loop: transfer-film particles are at most the film thick; no fil
   const ParticleModelResult r0 = run_particle_model(c, "test");
   for (const ParticleRecord& p : r0.particles) CHECK(p.source == ParticleSource::kSofter);
 }
+
+// Reference: the flow rule's cases (particle_model.h): the softer surface at the contact sets
+// the cap and flows; equally hard surfaces (within 2 %) share the overlap equally.
+TEST_CASE("plastic flow rule: which surfaces flow at the cap, and their shares") {
+  ParticleModelConfig c = make_pair_config(PairName::kSteelSteel);
+  PlasticFlowRule r = make_plastic_flow_rule(c);  // steel cylinder 6 GPa on a 1.8 GPa disk
+  CHECK(r.hardness == 1.8e9);
+  CHECK(r.worn_flows);
+  CHECK_FALSE(r.counterface_flows);
+  CHECK(r.counterface_share == 0.0);
+  c = make_pair_config(PairName::kSteelBrass);  // brass film on the cylinder, as hard as the disk
+  r = make_plastic_flow_rule(c);
+  CHECK(r.hardness == 2.64e9);
+  CHECK(r.worn_flows);
+  CHECK(r.counterface_flows);
+  CHECK(r.counterface_share == 0.5);
+  c.harder.film_hardness = 0.0;  // 2.8 x 0.94 = 2.632 GPa: within 2 % of the disk's, shared
+  r = make_plastic_flow_rule(c);
+  CHECK(r.hardness == doctest::Approx(2.632e9));
+  CHECK(r.counterface_share == 0.5);
+  c.harder.film_hardness = 2.0e9;  // a softer film takes the whole overlap
+  r = make_plastic_flow_rule(c);
+  CHECK(r.hardness == 2.0e9);
+  CHECK_FALSE(r.worn_flows);
+  CHECK(r.counterface_share == 1.0);
+  c.harder.film_hardness = 3.0e9;  // a harder film does not flow
+  r = make_plastic_flow_rule(c);
+  CHECK(r.hardness == 2.64e9);
+  CHECK_FALSE(r.counterface_flows);
+  c.harder.elastic.film_thickness = 0.0;  // no film: the steel's own 6 GPa
+  CHECK_FALSE(make_plastic_flow_rule(c).counterface_flows);
+  c = make_pair_config(PairName::kSteelBrass);
+  c.plastic_deformation = false;
+  r = make_plastic_flow_rule(c);
+  CHECK_FALSE(r.worn_flows);
+  CHECK_FALSE(r.counterface_flows);
+  CHECK(r.hardness == 2.64e9);  // the cap stays
+}
+
+// Reference: shakedown with both surfaces flowing. The two shares add up to the capped cells'
+// overlap, so pressed again at the same place the surfaces fit and hardly flow again; with an
+// equal share the film and the track flow by the same volume; a film thinner than its share
+// flows down to its substrate and no further, the track taking the rest.
+TEST_CASE("wear loop: a transfer film as hard as the disk flows with it, at most its thickness") {
+  ParticleModelConfig c = make_pair_config(PairName::kSteelBrass);
+  c.grid = Grid{64, 64, 102e-9, 102e-9, true};
+  c.nz = 8;
+  c.slide_cells = 0;
+  c.load = 0.2;
+  c.softer.yield_stress = 1e12;  // no particles from either body: only the flow changes them
+  c.harder.film_yield_stress = 1e12;
+  c.softer.roughness.lambda_s = 0.0;
+  c.harder.roughness.lambda_s = 0.0;
+  c.min_iterations = c.max_iterations = 2;
+  const ParticleModelResult r = run_particle_model(c, "test");
+  REQUIRE(r.iterations.size() == 2);
+  CHECK(r.particles.empty());
+  const IterationRecord& first = r.iterations[0];
+  CHECK(first.plastic_volume > 0.0);
+  CHECK(first.counterface_plastic_volume == doctest::Approx(first.plastic_volume).epsilon(1e-12));
+  CHECK(first.counterface_rq != r.initial_counterface_rq);  // the film changed shape
+  const double flowed = first.plastic_volume + first.counterface_plastic_volume;
+  CHECK(r.iterations[1].plastic_volume + r.iterations[1].counterface_plastic_volume <
+        0.05 * flowed);
+  // a 2 nm film: each cell's film flows 2 nm at most, the track the rest of the overlap
+  c.harder.elastic.film_thickness = 2e-9;
+  const ParticleModelResult t = run_particle_model(c, "test");
+  const IterationRecord& thin = t.iterations[0];
+  const double cells = thin.capped_fraction * c.grid.size();
+  CHECK(thin.counterface_plastic_volume > 0.0);
+  CHECK(thin.counterface_plastic_volume <= 2e-9 * cells * c.grid.cell_area() * (1 + 1e-9));
+  CHECK(thin.plastic_volume > thin.counterface_plastic_volume);
+  CHECK(t.iterations[1].plastic_volume + t.iterations[1].counterface_plastic_volume <
+        0.05 * (thin.plastic_volume + thin.counterface_plastic_volume));
+  MESSAGE("film 500 nm: track " << first.plastic_volume * 1e18 << " um3, film "
+                                << first.counterface_plastic_volume * 1e18 << " um3; film 2 nm: "
+                                << thin.plastic_volume * 1e18 << " / "
+                                << thin.counterface_plastic_volume * 1e18 << " um3");
+}

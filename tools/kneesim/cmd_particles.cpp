@@ -68,6 +68,7 @@ nlohmann::json body_json(const pt::BodySpec& b) {
           {"film_thickness_nm", b.elastic.film_thickness * 1e9},
           {"film_E_GPa", b.elastic.film_modulus / 1e9},
           {"film_yield_GPa", b.film_yield_stress / 1e9},
+          {"film_hardness_GPa", b.film_hardness / 1e9},
           {"surface_csv", b.surface_csv}};
 }
 
@@ -106,14 +107,16 @@ void run_particles(const ParticlesOptions& o) {
   its.columns = {"iteration", "particles", "counterface_particles", "mean_eq_radius_nm", "max_pressure_MPa", "load_N",
                  "contact_fraction", "capped_fraction", "cg_iterations", "cg_converged",
                  "stress_levels", "particle_volume_um3", "plastic_volume_um3",
-                 "track_rq_nm", "track_mean_wear_nm"};
+                 "track_rq_nm", "track_mean_wear_nm", "counterface_plastic_volume_um3",
+                 "counterface_rq_nm"};
   for (const pt::IterationRecord& it : r.iterations) {
     its.add_row({double(it.iteration), double(it.particles), double(it.counterface_particles),
                  it.mean_eq_radius * 1e9,
                  it.max_pressure / 1e6, it.load, it.contact_fraction, it.capped_fraction,
                  double(it.cg_iterations), double(it.contact_converged),
                  double(it.stress_levels), it.particle_volume * 1e18,
-                 it.plastic_volume * 1e18, it.track_rq * 1e9, it.track_mean_wear * 1e9});
+                 it.plastic_volume * 1e18, it.track_rq * 1e9, it.track_mean_wear * 1e9,
+                 it.counterface_plastic_volume * 1e18, it.counterface_rq * 1e9});
   }
   io::write_csv(dir / "iterations.csv", its);
   io::write_file_atomic(dir / "pressure_map_MPa.csv",
@@ -131,11 +134,14 @@ void run_particles(const ParticlesOptions& o) {
               {"min_iterations", run.min_iterations}, {"max_iterations", run.max_iterations},
               {"steady_tolerance", c.steady_tolerance},
               {"roughness_tolerance", c.roughness_tolerance},
+              {"contact_max_iterations", c.contact_max_iterations},
               {"track_factor", c.track_factor}, {"slide_cells", c.slide_cells}};
   if (!r.iterations.empty()) {
     j["track_rq_nm"] = {{"initial", r.initial_track_rq * 1e9},
                         {"final", r.iterations.back().track_rq * 1e9}};
     j["track_mean_wear_nm"] = r.iterations.back().track_mean_wear * 1e9;
+    j["counterface_rq_nm"] = {{"initial", r.initial_counterface_rq * 1e9},
+                              {"final", r.iterations.back().counterface_rq * 1e9}};
   }
   j["all_particles"] = size_json(r.all);
   j["counterface_particles"] = size_json(r.steady_counterface);
@@ -144,6 +150,11 @@ void run_particles(const ParticlesOptions& o) {
   j["window_load_N"] = pt::window_load(c);
   j["friction"] = c.friction;
   j["plastic_deformation"] = c.plastic_deformation;
+  const pt::PlasticFlowRule flow = pt::make_plastic_flow_rule(c);
+  j["plastic_flow"] = {{"pressure_cap_GPa", flow.hardness / 1e9},
+                       {"worn_body_flows", flow.worn_flows},
+                       {"counterface_flows", flow.counterface_flows},
+                       {"counterface_share", flow.counterface_share}};
   j["cylinder_radius_mm"] = c.cylinder_radius * 1e3;
   j["cylinder_length_mm"] = c.cylinder_length * 1e3;
   j["grid"] = {{"nx", c.grid.nx}, {"ny", c.grid.ny}, {"dx_nm", c.grid.dx * 1e9},

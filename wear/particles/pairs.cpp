@@ -90,6 +90,11 @@ const char* pair_name(PairName pair) {
   return "unknown";
 }
 
+double counterface_flow_hardness(const BodySpec& harder) {
+  if (harder.elastic.film_thickness <= 0.0) return harder.hardness;
+  return harder.film_hardness > 0.0 ? harder.film_hardness : 2.8 * harder.film_yield_stress;
+}
+
 ParticleModelConfig make_pair_config(PairName pair) {
   ParticleModelConfig c;
   c.pair = pair_name(pair);
@@ -120,6 +125,7 @@ ParticleModelConfig make_pair_config(PairName pair) {
       c.harder.elastic.film_modulus = 88e9;
       c.harder.elastic.film_poisson = 0.3;
       c.harder.film_yield_stress = 0.94e9;  // the film is brass from the disk
+      c.harder.film_hardness = 2.64e9;      // (the disk's H; 2.8 x 0.94 = 2.63 GPa)
       c.sources = "particle-size study (physics.md section 9): brass disk E 88 GPa, H 2.64 GPa, "
                   "sigma_y 0.94 GPa, Rq 760 nm, skewness -1, kurtosis 4.94, mu 0.3; brass transfer "
                   "film 0.5 um on the cylinder, correlation length 2 um along sliding, lay gamma 2 and "

@@ -21,7 +21,12 @@ struct BodySpec {
   SurfaceSpec roughness;    // Rq, skewness, kurtosis, correlation length, seed
   std::string surface_csv;  // measured height map replacing the generated one; empty = none
   double film_yield_stress = 0.0;  // sigma_y of the transfer film, when there is one [Pa]
+  double film_hardness = 0.0;      // H of the transfer film; 0 = 2.8 x film_yield_stress [Pa]
 };
+
+// The hardness at which the counterface's surface flows: its transfer film's when it has one,
+// else its own.
+double counterface_flow_hardness(const BodySpec& harder);
 
 struct ParticleModelConfig {
   std::string pair;               // e.g. "steel-steel"
@@ -59,6 +64,10 @@ struct ParticleModelConfig {
   int block = 0;                  // iterations per statistics block [-]
   double steady_tolerance = 0.02; // relative change of the block mean radius [-]
   double roughness_tolerance = 0.03; // relative change of the block mean track Rq [-]
+  // CG iterations per wear-loop contact; about a third of the nearly fully plastic contacts end
+  // there without meeting the complementarity tolerance, carrying the load exactly, with the
+  // sizes unchanged against 100 (docs/particles.md)
+  int contact_max_iterations = 40;  // [-]
   std::string sources;            // where the inputs come from
 };
 

@@ -62,6 +62,18 @@ SizeStats calc_size_stats(const std::vector<ParticleRecord>& particles, int firs
   return s;
 }
 
+PlasticFlowRule make_plastic_flow_rule(const ParticleModelConfig& c) {
+  constexpr double kSameHardness = 0.02;
+  const double counterface = counterface_flow_hardness(c.harder);
+  PlasticFlowRule r;
+  r.hardness = std::min(c.softer.hardness, counterface);
+  if (!c.plastic_deformation) return r;
+  r.worn_flows = c.softer.hardness <= r.hardness * (1.0 + kSameHardness);
+  r.counterface_flows = counterface <= r.hardness * (1.0 + kSameHardness);
+  if (r.counterface_flows) r.counterface_share = r.worn_flows ? 0.5 : 1.0;
+  return r;
+}
+
 RunLengths resolve_run_lengths(const ParticleModelConfig& c) {
   RunLengths r;
   const long track_rows = static_cast<long>(c.grid.nx) * std::max(1, c.track_factor);
@@ -81,7 +93,9 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
   const Grid& g = c.grid;
   check_grid(g, c.nz, source);
   const double load = window_load(c);
-  const double cap = c.softer.hardness * g.nx * g.dx * g.ny * g.dy;
+  const PlasticFlowRule flow = make_plastic_flow_rule(c);
+  const double hardness = flow.hardness;
+  const double cap = hardness * g.nx * g.dx * g.ny * g.dy;
   if (c.load > 0.0 && load > cap) {
     char buf[320];
     std::snprintf(buf, sizeof buf,
@@ -91,14 +105,14 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
                   cap / load * c.load);
     throw InputError(buf);
   }
-  check_load(load, c.softer.hardness, g, source);
+  check_load(load, hardness, g, source);
   const int nx = g.nx, ny = g.ny;
   const long n = g.size();
 
   // surfaces: the cylinder's in the window, the worn track longer and periodic
   Grid track_grid = g;
   track_grid.nx = g.nx * std::max(1, c.track_factor);
-  const std::vector<double> cyl = make_body_surface(c.harder, g, source);
+  std::vector<double> cyl = make_body_surface(c.harder, g, source);
   std::vector<double> track = make_body_surface(c.softer, track_grid, source);
   const int ntrack = static_cast<int>(track.size() / ny);
   track_grid.nx = ntrack;
@@ -106,15 +120,21 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
   std::vector<double> removed(track.size());
   const SurfaceStats track0 = calc_surface_stats(track);
   res.initial_track_rq = track0.rq;
+  res.initial_counterface_rq = calc_surface_stats(cyl).rq;
+  double counterface_rq = res.initial_counterface_rq;
 
   DeflectionOperator op(g, c.harder.elastic, c.softer.elastic);
   SubsurfaceStress stress(g, c.softer.elastic.poisson_ratio);
   CounterfaceYield counterface(c);
   ContactOptions opt;
   opt.load = load;
-  opt.hardness = c.softer.hardness;
+  opt.hardness = hardness;
+  const bool counterface_flows = flow.counterface_flows;
+  // the film left on each counterface cell, and this iteration's flow of it
+  std::vector<double> film_left(counterface_flows ? n : 0, c.harder.elastic.film_thickness);
+  std::vector<double> flowed(counterface_flows ? n : 0);
   opt.tolerance = 1e-6;
-  opt.max_iterations = 40;
+  opt.max_iterations = c.contact_max_iterations;
 
   std::vector<double> h(n);
   std::vector<double> levels(static_cast<long>(c.nz) * n);
@@ -147,23 +167,39 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
     const Detachment det = find_particles_from_levels(
         [&](int k, double* vm) { stress.calc_von_mises(k * c.dz, vm); }, g, c.nz, c.dz, refine,
         c.softer.yield_stress, levels, &computed);
-    // plastic set: where the pressure is at the cap the track's asperities overlap the
-    // deformed cylinder by -gap; that height flows away for good (elastic-perfectly plastic
-    // contact, the softer body yields), so the next pass meets the flattened track
-    double plastic_sum = 0.0;
+    // plastic set: where the pressure is at the cap the surfaces overlap by -gap; that height
+    // flows away for good (elastic-perfectly plastic contact) from the surfaces that yield
+    // there (the flow rule): the worn track, and a transfer film as soft as the cap. The
+    // next pass meets the flattened track; the counterface, fixed to the window, keeps its
+    // flattened film.
+    double plastic_sum = 0.0, counterface_sum = 0.0;
     std::fill(removed.begin(), removed.end(), 0.0);
+    std::fill(flowed.begin(), flowed.end(), 0.0);
     for (int i = 0; i < nx; ++i) {
       const long row = (offset + i) % ntrack;
       for (int j = 0; j < ny; ++j) {
         const long k = static_cast<long>(i) * ny + j;
-        const double plastic = c.plastic_deformation && cr.pressure[k] >= c.softer.hardness
+        const double overlap = c.plastic_deformation && cr.pressure[k] >= hardness
                                    ? std::max(0.0, -cr.gap[k])
                                    : 0.0;
+        // a film flows down to its substrate at most; the rest is the worn body's
+        const double film = counterface_flows
+                                ? std::min(flow.counterface_share * overlap, film_left[k])
+                                : 0.0;
+        const double plastic = flow.worn_flows ? overlap - film : 0.0;
+        if (counterface_flows) flowed[k] = film, film_left[k] -= film;
+        counterface_sum += film;
         plastic_sum += plastic;
         removed[row * ny + j] = det.removed_depth[k] + plastic;
       }
     }
-    track_changed = track_changed || plastic_sum > 0.0 || !det.particles.empty();
+    if (counterface_flows && counterface_sum > 0.0) {
+      apply_lambda_s_filter(g, c.harder.roughness.lambda_s, flowed);
+      for (long k = 0; k < n; ++k) cyl[k] -= flowed[k];
+      counterface_rq = calc_surface_stats(cyl).rq;
+    }
+    track_changed = track_changed || plastic_sum > 0.0 || counterface_sum > 0.0 ||
+                    !det.particles.empty();
     // the removed depth is band-limited like the surfaces themselves (lambda_s of the worn
     // body): a particle's voxel outline would otherwise cut one-cell cliffs into the track,
     // short wavelengths that each grid resolves at its own spacing, and the worn track, unlike
@@ -195,9 +231,11 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
     rec.cg_iterations = cr.iterations;
     rec.stress_levels = computed;
     rec.plastic_volume = plastic_sum * g.cell_area();
+    rec.counterface_plastic_volume = counterface_sum * g.cell_area();
     const SurfaceStats worn = calc_surface_stats(track);
     rec.track_rq = worn.rq;
     rec.track_mean_wear = track0.mean - worn.mean;
+    rec.counterface_rq = counterface_rq;
     res.iterations.push_back(rec);
     if (it == 1) {
       // maps of the first (unworn) contact for the plots: pressure, and a vM section

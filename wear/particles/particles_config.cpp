@@ -100,6 +100,7 @@ void read_body(const Reader& r, const std::string& s, BodySpec& b) {
   r.set(s, "film_E_GPa", b.elastic.film_modulus, 1e9, 0.0, 2000);
   r.set(s, "film_nu", b.elastic.film_poisson, 1.0, 0.0, 0.499);
   r.set(s, "film_yield_GPa", b.film_yield_stress, 1e9, 0.0, 100);
+  r.set(s, "film_hardness_GPa", b.film_hardness, 1e9, 0.0, 100);
   if (b.elastic.film_thickness > 0.0 && !(b.elastic.film_modulus > 0.0)) {
     throw InputError(r.file + ": [" + s + "] film_E_GPa must be > 0 when film_thickness_nm > 0");
   }
@@ -136,6 +137,7 @@ ParticleModelConfig read_particle_config(const std::filesystem::path& path) {
   r.set_int("run", "track_factor", c.track_factor, 1, 64);
   r.set("run", "steady_tolerance", c.steady_tolerance, 1.0, 0.0, 10.0);
   r.set("run", "roughness_tolerance", c.roughness_tolerance, 1.0, 0.0, 10.0);
+  r.set_int("run", "contact_max_iterations", c.contact_max_iterations, 1, 100000);
   read_body(r, "harder", c.harder);
   read_body(r, "softer", c.softer);
   r.reject_unread();

@@ -2,6 +2,7 @@
 // material pair; writes one row per particle, the per-iteration history, maps for the plots
 // and a JSON summary. Runs the steel-steel pair of the particle-size study at 10 N when given
 // no arguments.
+#include <algorithm>
 #include <omp.h>
 
 #include <cstdio>
@@ -129,6 +130,9 @@ void run_particles(const ParticlesOptions& o) {
   j["seconds"] = r.seconds;
   j["steady_state"] = r.steady_state;
   j["steady_from_iteration"] = r.steady_from;
+  // contacts that ended at the CG cap (placed plastically; iterations.csv: cg_converged = 0)
+  j["contacts_unconverged"] = std::count_if(r.iterations.begin(), r.iterations.end(),
+                                            [](const pt::IterationRecord& it) { return !it.contact_converged; });
   const pt::RunLengths run = pt::resolve_run_lengths(c);
   j["run"] = {{"pass_iterations", run.pass}, {"block_iterations", run.block},
               {"min_iterations", run.min_iterations}, {"max_iterations", run.max_iterations},

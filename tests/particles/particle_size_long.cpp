@@ -10,7 +10,7 @@
 // track; steady when the block mean radius changes by < 2 % and the worn track's rms roughness
 // by < 3 % twice in a row; 144-500 iterations here) on the study's 240 x 240 grid with the
 // preset surfaces (lay gamma 2 along sliding, lambda_s 0.5 um; the surface-input map is in
-// docs/particles.md); the roughness trend is averaged over three surface seeds (about 25 min
+// docs/particles.md); the roughness trend is averaged over three surface seeds (about 20 min
 // in Release on 2 cores).
 #include <doctest/doctest.h>
 

@@ -182,3 +182,33 @@ TEST_CASE("wear loop: a transfer film as hard as the disk flows with it, at most
                                 << thin.plastic_volume * 1e18 << " / "
                                 << thin.counterface_plastic_volume * 1e18 << " um3");
 }
+
+// Reference: the definitions, by hand. Three particles of radius 40, 100 and 600 nm (spheres'
+// volumes): number mean 246.7 nm; volume-weighted sum V R / sum V; the 0.1-1 um diameter band
+// holds only the 100 nm one (diameter 200 nm); the 40 nm one (80 nm) and the 600 nm one
+// (1.2 um) fall outside. The window and source filters keep what they name.
+TEST_CASE("size statistics: number mean, volume-weighted radius, active-band volume share") {
+  auto sphere = [](double r) {
+    Particle p;
+    p.eq_radius = r;
+    p.volume = 4.0 / 3.0 * 3.14159265358979323846 * r * r * r;
+    return p;
+  };
+  std::vector<ParticleRecord> ps = {{1, sphere(40e-9), ParticleSource::kSofter},
+                                    {2, sphere(100e-9), ParticleSource::kSofter},
+                                    {2, sphere(600e-9), ParticleSource::kCounterface}};
+  const SizeStats s = calc_size_stats(ps, 1);
+  const double v1 = ps[0].particle.volume, v2 = ps[1].particle.volume, v3 = ps[2].particle.volume;
+  CHECK(s.particles == 3);
+  CHECK(s.eq_radius == doctest::Approx(740e-9 / 3));
+  CHECK(s.volume_weighted_eq_radius ==
+        doctest::Approx((v1 * 40e-9 + v2 * 100e-9 + v3 * 600e-9) / (v1 + v2 + v3)));
+  CHECK(s.active_band_volume_fraction == doctest::Approx(v2 / (v1 + v2 + v3)));
+  const SizeStats late = calc_size_stats(ps, 2);
+  CHECK(late.particles == 2);
+  const ParticleSource softer = ParticleSource::kSofter;
+  const SizeStats disk = calc_size_stats(ps, 1, &softer);
+  CHECK(disk.particles == 2);
+  CHECK(disk.active_band_volume_fraction == doctest::Approx(v2 / (v1 + v2)));
+  CHECK(calc_size_stats({}, 1).volume_weighted_eq_radius == 0.0);
+}

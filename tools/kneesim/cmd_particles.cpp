@@ -51,7 +51,9 @@ std::string map_csv(const std::vector<double>& v, int rows, int cols, double sca
 nlohmann::json size_json(const pt::SizeStats& s) {
   return {{"particles", s.particles},          {"mean_eq_radius_nm", s.eq_radius * 1e9},
           {"mean_length_nm", s.length * 1e9},  {"mean_width_nm", s.width * 1e9},
-          {"mean_thickness_nm", s.thickness * 1e9}, {"mean_volume_um3", s.volume * 1e18}};
+          {"mean_thickness_nm", s.thickness * 1e9}, {"mean_volume_um3", s.volume * 1e18},
+          {"volume_weighted_eq_radius_nm", s.volume_weighted_eq_radius * 1e9},
+          {"volume_fraction_eq_diameter_0p1_to_1um", s.active_band_volume_fraction}};
 }
 
 nlohmann::json body_json(const pt::BodySpec& b) {
@@ -173,11 +175,13 @@ void run_particles(const ParticlesOptions& o) {
   io::write_json(dir / "summary.json", j);
 
   std::printf("%s at %g N: %ld particles in %zu iterations (%s), mean eq. radius %.0f nm, "
-              "length %.0f nm, width %.0f nm, thickness %.0f nm; %.1f s -> %s\n",
+              "length %.0f nm, width %.0f nm, thickness %.0f nm (volume-weighted radius %.0f nm, "
+              "%.0f %% of the volume at diameters 0.1-1 um); %.1f s -> %s\n",
               c.pair.c_str(), c.load, r.steady.particles, r.iterations.size(),
               r.steady_state ? "steady" : "not steady at the iteration limit",
               r.steady.eq_radius * 1e9, r.steady.length * 1e9, r.steady.width * 1e9,
-              r.steady.thickness * 1e9, r.seconds, dir.string().c_str());
+              r.steady.thickness * 1e9, r.steady.volume_weighted_eq_radius * 1e9,
+              100.0 * r.steady.active_band_volume_fraction, r.seconds, dir.string().c_str());
   if (!o.no_plots) io::run_plot("particles.py", {dir.string()});
 }
 

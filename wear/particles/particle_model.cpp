@@ -54,9 +54,16 @@ SizeStats calc_size_stats(const std::vector<ParticleRecord>& particles, int firs
     s.width += r.particle.width;
     s.thickness += r.particle.thickness;
     s.volume += r.particle.volume;
+    s.volume_weighted_eq_radius += r.particle.volume * r.particle.eq_radius;
+    const double diameter = 2.0 * r.particle.eq_radius;
+    if (diameter >= 0.1e-6 && diameter <= 1e-6) s.active_band_volume_fraction += r.particle.volume;
   }
   if (s.particles > 0) {
     const double n = static_cast<double>(s.particles);
+    if (s.volume > 0.0) {
+      s.volume_weighted_eq_radius /= s.volume;
+      s.active_band_volume_fraction /= s.volume;
+    }
     s.eq_radius /= n, s.length /= n, s.width /= n, s.thickness /= n, s.volume /= n;
   }
   return s;

@@ -60,6 +60,13 @@ struct SizeStats {
   double width = 0.0;        // mean [m]
   double thickness = 0.0;    // mean [m]
   double volume = 0.0;       // mean [m^3]
+  // volume-weighted mean equivalent radius: sum V R / sum V; unlike the number mean it is
+  // carried by the particles that hold the material, not by the many one-cell ones whose
+  // count depends on the grid [m]
+  double volume_weighted_eq_radius = 0.0;
+  // share of the detached volume in particles of equivalent diameter 0.1-1 um, the range
+  // the body's response is most active to [-]
+  double active_band_volume_fraction = 0.0;
 };
 
 struct ParticleModelResult {

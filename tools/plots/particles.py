@@ -1,5 +1,6 @@
-"""Plots of a `kneesim particles` run: size histogram, mean size vs iteration, and the contact
-pressure map with a von Mises section. Usage: particles.py OUT_DIR (reads its CSV/JSON)."""
+"""Plots of a `kneesim particles` run: size histogram, mean size vs iteration, the run-in
+(track and counterface roughness, particle volume), and the contact pressure map with a von
+Mises section. Usage: particles.py OUT_DIR (reads its CSV/JSON)."""
 import csv
 import json
 import os
@@ -57,6 +58,28 @@ def main(out):
     ax.set_title(title + " (dotted: start of the reported window)")
     fig.tight_layout()
     save_figure(fig, os.path.join(out, "mean_size_vs_iteration.png"))
+
+    # run-in: rms roughness of the worn track and of the counterface (its film flattens when
+    # it flows with the disk), and the material the track loses per iteration
+    if its and "track_rq_nm" in its:
+        fig, ax = plt.subplots(figsize=(6, 4))
+        ax.plot(its["iteration"], its["track_rq_nm"], "-", label="worn track Rq")
+        if "counterface_rq_nm" in its:
+            ax.plot(its["iteration"], its["counterface_rq_nm"], "-", label="counterface Rq")
+        ax.set_yscale("log")
+        ax.set_xlabel("iteration")
+        ax.set_ylabel("rms roughness [nm]")
+        ax2 = ax.twinx()
+        ax2.plot(its["iteration"], its["particle_volume_um3"], ":", color="tab:red",
+                 label="particle volume")
+        ax2.set_ylabel("particle volume per iteration [um^3]")
+        ax.axvline(summary.get("steady_from_iteration", 1), color="0.5", ls=":")
+        lines = ax.get_legend_handles_labels()
+        lines2 = ax2.get_legend_handles_labels()
+        ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], loc="upper right")
+        ax.set_title(title + ": run-in")
+        fig.tight_layout()
+        save_figure(fig, os.path.join(out, "run_in.png"))
 
     # pressure map and von Mises section
     p = read_map(os.path.join(out, "pressure_map_MPa.csv"))

@@ -152,32 +152,21 @@ void LayeredSubsurfaceStress::set_traction(const std::vector<double>& pressure,
 
 void LayeredSubsurfaceStress::fill_spectra(double z) const {
   assert(z >= 0.0);
-  const Grid& g = spectra_.grid();
-  const int npx = spectra_.npx(), npy = spectra_.npy(), nc = spectra_.nyc();
+  const int nc = spectra_.nyc();
   const double mu = mu_, t = t_, nuf = nu_f_, nus = nu_s_;
   const bool film = z < t;
   const double nu = film ? nuf : nus;
   const double mean_xx = film ? mean_xx_f_ : mean_xx_s_;
   const Complex i1(0.0, 1.0);
-  // frequency responses times the traction spectra
-#pragma omp parallel for schedule(static)
-  for (int ix = 0; ix < npx; ++ix) {
-    const int fx = ix <= npx / 2 ? ix : ix - npx;
-    const double kx = 2.0 * kPi * fx / (npx * g.dx);
-    const double* row = &coef_[static_cast<long>(fx < 0 ? -fx : fx) * nc * kCoefs];
-    for (int iy = 0; iy < nc; ++iy) {
-      const long k = static_cast<long>(ix) * nc + iy;
-      const double ky = 2.0 * kPi * iy / (npy * g.dy);
-      const Complex P = spectra_.pressure(k), Q = mu * P;
-      if (ix == npx / 2 || iy == npy / 2) {
-        // Nyquist lines: odd responses cannot be represented; drop them
-        spectra_.set(k, {});
-      } else if (ix == 0 && iy == 0) {
+  spectra_.fill(
+      [&](const Complex& P) -> std::array<Complex, 6> {
         // mean traction: uniform normal and shear stress, shared in-plane strain (header)
-        spectra_.set(k, {mean_xx * P, mean_xx * P, -P, 0.0, -Q, 0.0});
-      } else {
+        return {mean_xx * P, mean_xx * P, -P, 0.0, -mu * P, 0.0};
+      },
+      [&](int fx, int iy, double kx, double ky, const Complex& P) {
+        const Complex Q = mu * P;
         const double alpha = std::hypot(kx, ky), c = kx / alpha, s = ky / alpha;
-        const double* cf = row + iy * kCoefs;
+        const double* cf = &coef_[(static_cast<long>(fx < 0 ? -fx : fx) * nc + iy) * kCoefs];
         // real plane-strain responses to a unit P (p*) and a unit Q1 (q*), and antiplane
         // amplitudes: sigma_12 = i Q2 r12, sigma_23 = -Q2 r23
         double p11, p33, p13, q11, q33, q13, r12, r23;
@@ -218,10 +207,8 @@ void LayeredSubsurfaceStress::fill_spectra(double z) const {
         const Complex s22 = nu * (s11 + s33);  // plane strain
         const Complex s12 = i1 * r12 * q2;
         const Complex s23 = -r23 * q2;
-        spectra_.set(k, rotate_plane_wave(c, s, s11, s22, s33, s12, s13, s23));
-      }
-    }
-  }
+        return rotate_plane_wave(c, s, s11, s22, s33, s12, s13, s23);
+      });
 }
 
 void LayeredSubsurfaceStress::calc_stress(double z, std::array<std::vector<double>, 6>& out) const {

@@ -136,10 +136,9 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
   ContactOptions opt;
   opt.load = load;
   opt.hardness = hardness;
-  const bool counterface_flows = flow.counterface_flows;
   // the film left on each counterface cell, and this iteration's flow of it
-  std::vector<double> film_left(counterface_flows ? n : 0, c.harder.elastic.film_thickness);
-  std::vector<double> flowed(counterface_flows ? n : 0);
+  std::vector<double> film_left(flow.counterface_flows ? n : 0, c.harder.elastic.film_thickness);
+  std::vector<double> flowed(flow.counterface_flows ? n : 0);
   opt.tolerance = 1e-6;
   opt.max_iterations = c.contact_max_iterations;
 
@@ -190,17 +189,19 @@ ParticleModelResult run_particle_model(const ParticleModelConfig& c, const std::
                                    ? std::max(0.0, -cr.gap[k])
                                    : 0.0;
         // a film flows down to its substrate at most; the rest is the worn body's
-        const double film = counterface_flows
-                                ? std::min(flow.counterface_share * overlap, film_left[k])
-                                : 0.0;
+        double film = 0.0;
+        if (flow.counterface_flows) {
+          film = std::min(flow.counterface_share * overlap, film_left[k]);
+          flowed[k] = film;
+          film_left[k] -= film;
+        }
         const double plastic = flow.worn_flows ? overlap - film : 0.0;
-        if (counterface_flows) flowed[k] = film, film_left[k] -= film;
         counterface_sum += film;
         plastic_sum += plastic;
         removed[row * ny + j] = det.removed_depth[k] + plastic;
       }
     }
-    if (counterface_flows && counterface_sum > 0.0) {
+    if (counterface_sum > 0.0) {
       apply_lambda_s_filter(g, c.harder.roughness.lambda_s, flowed);
       for (long k = 0; k < n; ++k) cyl[k] -= flowed[k];
       counterface_rq = calc_surface_stats(cyl).rq;

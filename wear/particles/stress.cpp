@@ -4,7 +4,6 @@
 
 namespace kneesim::particles {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 double von_mises(double sxx, double syy, double szz, double sxy, double sxz, double syz) {
@@ -80,38 +79,24 @@ void SubsurfaceStress::set_traction(const std::vector<double>& pressure, double 
 }
 
 void SubsurfaceStress::fill_spectra(double z) const {
-  const Grid& g = spectra_.grid();
-  const int npx = spectra_.npx(), npy = spectra_.npy(), nc = spectra_.nyc();
   const double nu = nu_, mu = mu_;
   const Complex i1(0.0, 1.0);
-  // frequency responses times the traction spectra
-#pragma omp parallel for schedule(static)
-  for (int ix = 0; ix < npx; ++ix) {
-    const int fx = ix <= npx / 2 ? ix : ix - npx;
-    const double kx = 2.0 * kPi * fx / (npx * g.dx);
-    for (int iy = 0; iy < nc; ++iy) {
-      const long k = static_cast<long>(ix) * nc + iy;
-      const double ky = 2.0 * kPi * iy / (npy * g.dy);
-      const Complex P = spectra_.pressure(k), Q = mu * P;
-      if (ix == npx / 2 || iy == npy / 2) {
-        // Nyquist lines: odd responses cannot be represented; drop them
-        spectra_.set(k, {});
-      } else if (ix == 0 && iy == 0) {
+  spectra_.fill(
+      [&](const Complex& P) -> std::array<Complex, 6> {
         // mean traction: the direction average of the plane-wave response at alpha -> 0
         const Complex in_plane = -0.5 * (1.0 + 2.0 * nu) * P;
-        spectra_.set(k, {in_plane, in_plane, -P, 0.0, -Q, 0.0});
-      } else {
+        return {in_plane, in_plane, -P, 0.0, -mu * P, 0.0};
+      },
+      [&](int, int, double kx, double ky, const Complex& P) {
+        const Complex Q = mu * P;
         const double alpha = std::hypot(kx, ky), c = kx / alpha, s = ky / alpha;
         const double t = alpha * z, e = std::exp(-t);
         // plane wave along e1 = (c, s): Boussinesq (P) and Cerruti (Q1 = c Q, Q2 = -s Q)
-        spectra_.set(k, rotate_plane_wave(c, s, e * ((t - 1.0) * P + i1 * c * (2.0 - t) * Q),
-                                          e * (-2.0 * nu * P + 2.0 * i1 * nu * c * Q),
-                                          e * (-(1.0 + t) * P + i1 * t * c * Q),
-                                          e * (-i1 * s * Q),
-                                          e * (i1 * t * P + (t - 1.0) * c * Q), e * (s * Q)));
-      }
-    }
-  }
+        return rotate_plane_wave(c, s, e * ((t - 1.0) * P + i1 * c * (2.0 - t) * Q),
+                                 e * (-2.0 * nu * P + 2.0 * i1 * nu * c * Q),
+                                 e * (-(1.0 + t) * P + i1 * t * c * Q), e * (-i1 * s * Q),
+                                 e * (i1 * t * P + (t - 1.0) * c * Q), e * (s * Q));
+      });
 }
 
 void SubsurfaceStress::calc_stress(double z, std::array<std::vector<double>, 6>& out) const {

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <numbers>
 #include <vector>
 
 #include "wear/particles/fft.h"
@@ -35,6 +36,32 @@ class StressSpectra {
   // stress spectra at frequency k, StressComponent order (scratch: one level at a time)
   void set(long k, const std::array<Complex, 6>& stress) const {
     for (int c = 0; c < 6; ++c) spec_[c][k] = stress[c];
+  }
+  // Sets the stress spectra of one level, frequency by frequency (rows in parallel): the
+  // Nyquist lines are dropped (odd responses cannot be represented there), the mean gets
+  // mean(P) and every other frequency wave(fx, iy, kx, ky, P), with P the pressure spectrum
+  // there, fx the signed x and iy the y frequency index and kx, ky the wavenumbers [1/m];
+  // each returns the six stress spectra in StressComponent order.
+  template <class Mean, class Wave>
+  void fill(const Mean& mean, const Wave& wave) const {
+    const int npx = npx_, npy = npy_, nc = nyc();
+#pragma omp parallel for schedule(static)
+    for (int ix = 0; ix < npx; ++ix) {
+      const int fx = ix <= npx / 2 ? ix : ix - npx;
+      const double kx = 2.0 * std::numbers::pi * fx / (npx * grid_.dx);
+      for (int iy = 0; iy < nc; ++iy) {
+        const long k = static_cast<long>(ix) * nc + iy;
+        const double ky = 2.0 * std::numbers::pi * iy / (npy * grid_.dy);
+        const Complex& P = p_hat_[k];
+        if (ix == npx / 2 || iy == npy / 2) {
+          set(k, {});
+        } else if (ix == 0 && iy == 0) {
+          set(k, mean(P));
+        } else {
+          set(k, wave(fx, iy, kx, ky, P));
+        }
+      }
+    }
   }
   // the six components of the spectra set, each grid.size() [Pa]
   void to_grid(std::array<std::vector<double>, 6>& out) const;

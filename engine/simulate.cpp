@@ -11,6 +11,7 @@ Frame make_frame(const State& state, const Data& data) {
   f.gait_pct = data.gait_pct;
   f.time = state.time;
   f.q = data.q;
+  f.joint = calc_joint_coordinates(data.X_WF, data.X_WT);
   f.applied = data.applied;
   f.restraint = data.restraint_force;
   f.contact = data.contact;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "engine/data.h"
+#include "engine/joint_coordinates.h"
 #include "engine/model.h"
 #include "engine/state.h"
 #include "engine/step.h"
@@ -16,7 +17,8 @@ namespace kneesim::engine {
 struct Frame {
   double gait_pct = 0.0;                                // [%]
   double time = 0.0;                                    // [s]
-  std::array<std::array<double, kNumDof>, 2> q{};       // DOF values [m or rad]
+  std::array<std::array<double, kNumDof>, 2> q{};       // carriage DOF values [m or rad]
+  JointCoordinates joint;                               // tibia relative to femur (outputs)
   std::array<std::array<double, kNumDof>, 2> applied{}; // waveform loads [N or N m]
   Eigen::Vector3d restraint = Eigen::Vector3d::Zero();  // AP force [N], IE torque [N m]
   ContactSummary contact;

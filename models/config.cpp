@@ -237,8 +237,15 @@ void apply_rig_preset(Config& c) {
     c.axial_offset_mm = 5.0;
     c.tibia_pivot_medial_mm = 5.0;
   } else if (c.rig_preset == "materials_study") {
+    // the materials study's rig (physics.md section 1): femoral FE prescribed, IS axial force,
+    // AP free, IE locked; tibial AP force and IE torque with the linear restraint, IS and FE
+    // locked. The study lists ML and VV free on both carriages; two rigid carriages free in the
+    // same DOF leave their common motion unrestrained (only the carriage dampers hold it: the
+    // pair drifts off in VV, "runaway motion" at t = 0.09 s), so each joint DOF is freed once,
+    // on the femoral carriage, which carries the medially offset axial load: its VV freedom is
+    // what shares the load 60:40 between the condyles (physics.md section 1)
     c.femur_dofs = A{"free", "force", "free", "free", "locked", "prescribed"};
-    c.tibia_dofs = A{"force", "locked", "free", "free", "force", "locked"};
+    c.tibia_dofs = A{"force", "locked", "locked", "locked", "force", "locked"};
     c.axial_offset_mm = 5.0;
     c.tibia_pivot_medial_mm = 0.0;
   } else {  // displacement

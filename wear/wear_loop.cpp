@@ -16,10 +16,10 @@ void fill_cycle_figures(const std::vector<engine::Frame>& frames, UpdateRecord& 
   double ap_lo = 1e9, ap_hi = -1e9, ie_lo = 1e9, ie_hi = -1e9, area = 0.0, peaks = 0.0;
   int n = 0;
   for (const engine::Frame& f : frames) {
-    ap_lo = std::min(ap_lo, f.q[1][0]);
-    ap_hi = std::max(ap_hi, f.q[1][0]);
-    ie_lo = std::min(ie_lo, f.q[1][4]);
-    ie_hi = std::max(ie_hi, f.q[1][4]);
+    ap_lo = std::min(ap_lo, f.joint.ap);
+    ap_hi = std::max(ap_hi, f.joint.ap);
+    ie_lo = std::min(ie_lo, f.joint.ie);
+    ie_hi = std::max(ie_hi, f.joint.ie);
     r.peak_pressure = std::max(r.peak_pressure, f.contact.peak_pressure);
     if (f.contact.elements_in_contact > 0) {
       area += f.contact.area[0] + f.contact.area[1];
@@ -72,6 +72,46 @@ int find_worn_through_vertex(const models::BuiltModel& pristine, const models::T
 // stability ratio above which the next update gets a shorter step
 constexpr double kStabilityHeadroom = 0.9;
 
+
+// one gait cycle on the current geometry from `state` (advanced on success); wear makes the
+// insert more conforming and the contact stiffer, so when the stability monitor trips the cycle
+// is repeated with the step the measured frequency allows, and a cycle close to the limit
+// shortens the step of the next one. `acc` (may be null) accumulates the cycle's wear depth.
+engine::RunResult simulate_cycle(engine::Model& model, engine::State& state, double dt_safety,
+                                 const WearLawParams& law, WearAccumulator* acc) {
+  engine::RunResult run;
+  for (int attempt = 0;; ++attempt) {
+    engine::State trial = state;
+    engine::Data data = engine::make_data(model);
+    if (acc) *acc = WearAccumulator(model.insert.size(), law);
+    engine::RunOptions ro;
+    ro.cycles = 1;
+    if (acc) {
+      ro.observer = [acc](const engine::Model& m, const engine::State& s,
+                          const engine::Data& d) { acc->observe(m, s, d); };
+    }
+    run = engine::simulate(model, trial, data, ro);
+    if (run.status == engine::StepStatus::kUnstableStep && attempt < 4) {
+      set_time_step(model, stable_step_for(model, run.omega_max, dt_safety));
+      continue;
+    }
+    state = trial;
+    break;
+  }
+  if (run.status == engine::StepStatus::kOk && run.max_stability_ratio > kStabilityHeadroom) {
+    set_time_step(model,
+                  std::min(model.dt, stable_step_for(model, run.omega_max, dt_safety)));
+  }
+  return run;
+}
+
+// the last record gets the figures of a cycle simulated on its geometry and is complete
+void complete_record(const std::vector<engine::Frame>& frames, WearResult& result,
+                     const std::vector<double>& depth, const WearOptions& o) {
+  fill_cycle_figures(frames, result.records.back());
+  result.frames = frames;
+  if (o.on_update) o.on_update(result.records, depth);
+}
 }  // namespace
 
 long update_interval(const WearOptions& o, int u) {
@@ -110,7 +150,11 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
     model.dt = c.dt;  // the step the run had adapted to (wear makes the contact stiffer)
     model.insert = models::make_worn_insert_surface(pristine, insert);
   } else {
-    // cycle 0: one settling cycle on the unworn insert gives the initial kinematics
+    // a settling cycle from rest brings the carriages into their periodic motion; its
+    // kinematics are not those of a settled cycle (the AP range differs by about 5 %), so it is
+    // reported nowhere: row 0 (cycle 0, the pristine insert) takes the figures of the first
+    // wear cycle, which runs on the pristine insert from the settled state, as `kneesim run`
+    // reports its last cycle
     engine::Data data = engine::make_data(model);
     engine::RunOptions ro;
     ro.cycles = 1;
@@ -120,46 +164,21 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
       result.message = engine::to_string(run.status);
       return result;
     }
-    UpdateRecord r;
-    fill_cycle_figures(run.frames, r);
-    result.records.push_back(r);
+    result.records.push_back(UpdateRecord{});
     result.frames = run.frames;
-    if (o.on_update) o.on_update(result.records, depth);
   }
 
   while (cycles_done < o.total_cycles) {
-    // one cycle on the current geometry, accumulating the per-cycle depth; wear makes the
-    // insert more conforming and the contact stiffer, so when the stability monitor trips the
-    // cycle is repeated with the step the measured frequency allows
-    engine::RunResult run;
+    // one cycle on the current geometry, accumulating the per-cycle depth
     WearAccumulator acc(model.insert.size(), o.law);
-    for (int attempt = 0;; ++attempt) {
-      engine::State trial = state;
-      engine::Data data = engine::make_data(model);
-      acc = WearAccumulator(model.insert.size(), o.law);
-      engine::RunOptions ro;
-      ro.cycles = 1;
-      ro.observer = [&acc](const engine::Model& m, const engine::State& s,
-                           const engine::Data& d) { acc.observe(m, s, d); };
-      run = engine::simulate(model, trial, data, ro);
-      if (run.status == engine::StepStatus::kUnstableStep && attempt < 4) {
-        set_time_step(model, stable_step_for(model, run.omega_max, pristine.dt_safety));
-        continue;
-      }
-      state = trial;
-      break;
-    }
+    const engine::RunResult run = simulate_cycle(model, state, pristine.dt_safety, o.law, &acc);
     if (run.status != engine::StepStatus::kOk) {
       result.status = run.status;
       result.message = engine::to_string(run.status);
       break;
     }
-    // close to the limit: shrink the step for the next update before it trips
-    if (run.max_stability_ratio > kStabilityHeadroom) {
-      set_time_step(model, std::min(model.dt, stable_step_for(model, run.omega_max,
-                                                              pristine.dt_safety)));
-    }
-    result.frames = run.frames;
+    // the cycle's kinematics and contact describe the geometry it ran on: the last record's
+    complete_record(run.frames, result, depth, o);
     const std::vector<double> per_cycle = spread_to_vertices(model.insert, acc.depth_per_cycle());
 
     // scale by the cycles of this update; halve them while a face would invert
@@ -203,13 +222,12 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
     cycles_done += interval;
     ++u;
 
+    // the new geometry's record; its kinematic and contact figures come from the next cycle
     UpdateRecord r;
     r.cycles = static_cast<double>(cycles_done);
     r.refinements = refinements;
-    fill_cycle_figures(run.frames, r);
     fill_wear_figures(surface0, depth, volume0, insert, r);
     result.records.push_back(r);
-    if (o.on_update) o.on_update(result.records, depth);
     if (!o.checkpoint.empty()) {
       Checkpoint c;
       c.identity = o.identity;
@@ -224,6 +242,16 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
       write_checkpoint(o.checkpoint, c);
     }
     if (o.progress) o.progress(static_cast<double>(cycles_done) / o.total_cycles);
+  }
+  // the last geometry's kinematics and contact: one more cycle on it, no wear accumulated
+  if (result.status == engine::StepStatus::kOk) {
+    const engine::RunResult run = simulate_cycle(model, state, pristine.dt_safety, o.law, nullptr);
+    if (run.status != engine::StepStatus::kOk) {
+      result.status = run.status;
+      result.message = std::string(engine::to_string(run.status)) + " in the cycle on the final geometry";
+    } else {
+      complete_record(run.frames, result, depth, o);
+    }
   }
   result.vertex_depth = depth;
   result.worn = insert;

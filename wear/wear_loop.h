@@ -20,7 +20,9 @@
 
 namespace kneesim::wear {
 
-// one row of wear.csv (SI inside; converted at output)
+// one row of wear.csv (SI inside; converted at output): the insert after `cycles` cycles; its
+// kinematic and contact figures are those of a settled gait cycle simulated on that geometry
+// (row 0: the pristine insert, the same cycle `kneesim run` reports)
 struct UpdateRecord {
   double cycles = 0;               // cycles completed after this update
   double volume = 0;               // enclosed-volume loss of the insert [m^3]
@@ -46,8 +48,10 @@ struct WearOptions {
   std::filesystem::path checkpoint;  // "" for none
   bool resume = false;
   std::function<void(double)> progress;
-  // after every update (and once at cycle 0, not again on resume): all records so far and the
-  // cumulative depth per articular vertex
+  // whenever a record is complete, i.e. once the cycle on its geometry has been simulated (row
+  // 0 after the first wear cycle, row k at the start of update k + 1, the last row after one
+  // more cycle on the final geometry): all records so far and the cumulative depth per
+  // articular vertex
   std::function<void(const std::vector<UpdateRecord>&, const std::vector<double>&)> on_update;
 };
 
@@ -57,7 +61,7 @@ struct WearResult {
   std::vector<UpdateRecord> records;    // cycle 0 first
   std::vector<double> vertex_depth;     // cumulative, per articular vertex [m]
   models::TriMesh worn;                 // the insert after the last update
-  std::vector<engine::Frame> frames;    // kinematics of the last simulated cycle
+  std::vector<engine::Frame> frames;    // the last simulated cycle (on the final geometry)
   int resumed_from_update = -1;         // update index the run resumed after, -1 if fresh
 };
 

@@ -71,8 +71,8 @@ std::shared_ptr<const KinematicsTrace> KinematicsSimulator::run(Effect effect,
   trace->ok = r.status == engine::StepStatus::kOk && !r.frames.empty();
   for (const engine::Frame& f : r.frames) {
     trace->gait_pct.push_back(f.gait_pct);
-    trace->ap_mm.push_back(f.q[1][0] * 1e3);
-    trace->ie_deg.push_back(f.q[1][4] * kRadToDeg);
+    trace->ap_mm.push_back(f.joint.ap * 1e3);
+    trace->ie_deg.push_back(f.joint.ie * kRadToDeg);
   }
   ++simulations_;
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

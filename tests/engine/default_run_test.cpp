@@ -7,8 +7,12 @@
 //  - the axial load line is offset 5 mm medially (physics.md section 1): the medial condyle
 //    carries more than the lateral one over stance (0-60 %), summed over frames, and at the
 //    peak-load frame;
-//  - plausible force-controlled kinematics (issue 2 acceptance): AP range of motion between 2
-//    and 15 mm, IE range between 3 and 20 deg.
+//  - ranges of motion of the joint (tibia relative to femur) within the 1st-99th percentile
+//    band of Pal 2008's Monte Carlo study of the same rig (Stanmore springs 4.75 / 22.18 N/mm,
+//    gap 3 mm, ISO 14243-1 gait, mu 0.07): AP 7.59-12.34 mm, IE 7.66-13.85 deg (physics.md
+//    section 8). Their implant is a NexGen CR, not the generic one, so this is the band a rig
+//    reproducing Pal's set-up has to fall in, not a validation of the implant; measured here
+//    (1.5 mm edges) 11.67 mm and 12.80 deg.
 #include <doctest/doctest.h>
 
 #include <chrono>
@@ -49,10 +53,10 @@ TEST_CASE("default run: load balance, medial share and ranges of motion") {
   double ap_lo = 1e9, ap_hi = -1e9, ie_lo = 1e9, ie_hi = -1e9, medial = 0.0, lateral = 0.0;
   const engine::Frame* peak = &result.frames.front();
   for (const engine::Frame& f : result.frames) {
-    ap_lo = std::min(ap_lo, f.q[1][0]);
-    ap_hi = std::max(ap_hi, f.q[1][0]);
-    ie_lo = std::min(ie_lo, f.q[1][4]);
-    ie_hi = std::max(ie_hi, f.q[1][4]);
+    ap_lo = std::min(ap_lo, f.joint.ap);
+    ap_hi = std::max(ap_hi, f.joint.ap);
+    ie_lo = std::min(ie_lo, f.joint.ie);
+    ie_hi = std::max(ie_hi, f.joint.ie);
     if (f.gait_pct <= 60.0) {
       medial += f.contact.normal_force[0];
       lateral += f.contact.normal_force[1];
@@ -75,8 +79,8 @@ TEST_CASE("default run: load balance, medial share and ranges of motion") {
   CHECK(contact_axial == doctest::Approx(applied).epsilon(0.02));
   CHECK(peak->contact.normal_force[0] > peak->contact.normal_force[1]);
   CHECK(medial > lateral);
-  CHECK(ap_rom_mm > 2.0);
-  CHECK(ap_rom_mm < 15.0);
-  CHECK(ie_rom_deg > 3.0);
-  CHECK(ie_rom_deg < 20.0);
+  CHECK(ap_rom_mm > 7.59);
+  CHECK(ap_rom_mm < 12.34);
+  CHECK(ie_rom_deg > 7.66);
+  CHECK(ie_rom_deg < 13.85);
 }

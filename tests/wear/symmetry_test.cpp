@@ -80,8 +80,8 @@ SideVolumes run(std::vector<models::Override> overrides, long cycles, long every
   s.medial = r.records.back().medial_volume;
   s.lateral = r.records.back().lateral_volume;
   for (const auto& f : r.frames) {
-    s.max_ml = std::max(s.max_ml, std::abs(f.q[1][2]));
-    s.max_vv = std::max(s.max_vv, std::abs(f.q[1][3]));
+    s.max_ml = std::max(s.max_ml, std::abs(f.joint.ml));
+    s.max_vv = std::max(s.max_vv, std::abs(f.joint.vv));
   }
   std::printf("[wear] symmetry run: medial %.5f mm^3, lateral %.5f mm^3, relative difference "
               "%.3e, max |ML| %.4f mm, max |VV| %.4f deg, %.2f s\n",

@@ -26,11 +26,11 @@ io::Table make_kinematics_table(const std::vector<engine::Frame>& frames) {
     const auto& c = f.contact;
     t.add_row({f.gait_pct,
                f.time,
-               f.q[0][5] * kRadToDeg,
-               f.q[1][0] * 1e3,
-               f.q[1][4] * kRadToDeg,
-               f.q[1][2] * 1e3,
-               f.q[1][3] * kRadToDeg,
+               f.joint.flexion * kRadToDeg,
+               f.joint.ap * 1e3,
+               f.joint.ie * kRadToDeg,
+               f.joint.ml * 1e3,
+               f.joint.vv * kRadToDeg,
                f.q[0][1] * 1e3,
                -f.applied[0][1],
                f.applied[1][0],
@@ -62,7 +62,7 @@ CycleFigures calc_cycle_figures(const std::vector<engine::Frame>& frames) {
   double peak_sum = 0.0, area_sum = 0.0, med = 0.0, lat = 0.0;
   int in_contact = 0;
   for (const engine::Frame& f : frames) {
-    const double ap = f.q[1][0] * 1e3, ie = f.q[1][4] * kRadToDeg;
+    const double ap = f.joint.ap * 1e3, ie = f.joint.ie * kRadToDeg;
     ap_lo = std::min(ap_lo, ap);
     ap_hi = std::max(ap_hi, ap);
     ie_lo = std::min(ie_lo, ie);

@@ -42,6 +42,45 @@ struct BorModel {
   MeasuredData measured;  // a copy, so the case can be moved or copied freely
 };
 
+// the practitioner's calibration data: the volumes of the calibration load (or the training
+// load nearest to it) from the steady state on (from cycle 1 when fewer than two are there),
+// and their least-squares slope
+struct CalibrationSlope {
+  double load = -1.0;   // [N]
+  double slope = 0.0;   // [mm^3/cycle]
+  std::string rows;     // the file rows used, "2, 3, 5"
+};
+
+CalibrationSlope calibration_slope(const MeasuredData& measured, const std::vector<int>& train,
+                                   double cal_load, double ss_from) {
+  CalibrationSlope out;
+  for (int i : train) {
+    const double l = parse_load(measured.rows[i].group);
+    if (out.load < 0.0 || std::abs(l - cal_load) < std::abs(out.load - cal_load)) out.load = l;
+  }
+  std::vector<double> xs, ys;
+  for (int pass = 0; pass < 2 && xs.size() < 2; ++pass) {
+    xs.clear();
+    ys.clear();
+    out.rows.clear();
+    for (int i : train) {
+      const auto& m = measured.rows[i];
+      if (m.quantity != "volume_mm3" || parse_load(m.group) != out.load) continue;
+      if (pass == 0 ? m.x < ss_from : m.x <= 0.0) continue;
+      xs.push_back(m.x);
+      ys.push_back(m.value);
+      out.rows += (out.rows.empty() ? "" : ", ") + std::to_string(m.row);
+    }
+  }
+  const double n = static_cast<double>(xs.size());
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < xs.size(); ++i) mx += xs[i] / n, my += ys[i] / n;
+  double sxx = 0, sxy = 0;
+  for (size_t i = 0; i < xs.size(); ++i) sxx += (xs[i] - mx) * (xs[i] - mx), sxy += (xs[i] - mx) * (ys[i] - my);
+  out.slope = (sxx > 0.0) ? sxy / sxx : (mx > 0.0 ? my / mx : 0.0);
+  return out;
+}
+
 }  // namespace
 
 std::string bor_load_label(double load) {
@@ -156,35 +195,24 @@ DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
   const bor::BorRig rig = options.rig;
   const double cal_load = options.calibration_load, ss_from = options.steady_state_from;
   c.calibrate_baseline = [shared, rig, cal_load, ss_from](const std::vector<int>& train) {
-    const MeasuredData* measured = &shared->measured;
-    // the calibration load, or the training load nearest to it
-    double load = -1.0;
-    for (int i : train) {
-      const double l = parse_load(measured->rows[i].group);
-      if (load < 0.0 || std::abs(l - cal_load) < std::abs(load - cal_load)) load = l;
-    }
-    std::vector<double> xs, ys;
-    for (int pass = 0; pass < 2 && xs.size() < 2; ++pass) {
-      xs.clear();
-      ys.clear();
-      for (int i : train) {
-        const auto& m = measured->rows[i];
-        if (m.quantity != "volume_mm3" || parse_load(m.group) != load) continue;
-        if (pass == 0 ? m.x < ss_from : m.x <= 0.0) continue;
-        xs.push_back(m.x);
-        ys.push_back(m.value);
-      }
-    }
-    double slope = 0.0;
-    const double n = static_cast<double>(xs.size());
-    double mx = 0, my = 0;
-    for (size_t i = 0; i < xs.size(); ++i) mx += xs[i] / n, my += ys[i] / n;
-    double sxx = 0, sxy = 0;
-    for (size_t i = 0; i < xs.size(); ++i) sxx += (xs[i] - mx) * (xs[i] - mx), sxy += (xs[i] - mx) * (ys[i] - my);
-    slope = (sxx > 0.0) ? sxy / sxx : (mx > 0.0 ? my / mx : 0.0);  // [mm^3/cycle]
-    const double k = slope / (load * bor::sliding_distance_per_cycle(rig) * 1e3);
+    const CalibrationSlope s = calibration_slope(shared->measured, train, cal_load, ss_from);
+    const double k = s.slope / (s.load * bor::sliding_distance_per_cycle(rig) * 1e3);
     return Eigen::VectorXd::Constant(1, std::clamp(k, 1e-13, 1e-5));
   };
+  // measured wear volume is cumulative: at the calibration load it must rise with cycles,
+  // otherwise there is no wear factor to calibrate (and no fit to judge)
+  {
+    std::vector<int> all(rows.size());
+    for (size_t i = 0; i < rows.size(); ++i) all[i] = static_cast<int>(i);
+    const CalibrationSlope s = calibration_slope(c.measured, all, cal_load, ss_from);
+    if (!(s.slope > 0.0)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "the volumes fall with cycles (slope %.3g mm^3 per 1000 "
+                    "cycles); cumulative wear volume must rise (slope > 0)", s.slope * 1e3);
+      throw InputError(c.measured.source + ": rows " + s.rows + ", column volume_mm3 at the " +
+                       "calibration load " + bor_load_label(s.load) + ": " + buf + ".");
+    }
+  }
 
   // held-out split rule
   bool per_specimen = true;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <stdexcept>
 
 #include "analysis/diagnosis/fit.h"
 #include "engine/errors.h"
@@ -389,6 +390,13 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
     noise.w = w_new;
     start = fit.params;
     if (moved < 0.01) break;
+  }
+  // no step had a finite likelihood (predictions or weights not finite): numerical trouble,
+  // reported as such rather than evaluated further
+  if (best.params.size() != static_cast<Eigen::Index>(m.specs.size())) {
+    throw std::runtime_error("the fit of candidate " + std::string(effect_name(e)) + " to " +
+                             c.measured.source + " found no parameters with a finite "
+                             "likelihood; the measurements cannot be modelled by it");
   }
   *noise_out = best_noise;
   m.params = best.params;

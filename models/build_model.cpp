@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <numbers>
 
@@ -35,6 +36,35 @@ Eigen::Matrix3d rotation_xyz_deg(const std::array<double, 3>& deg) {
       .toRotationMatrix();
 }
 
+// a knee component's largest extent lies far inside this range; outside it the mesh is not a
+// knee implant in the declared units (a metre mesh declared as mm is 1000x too small)
+constexpr double kMinImplantExtent = 15e-3;   // [m]
+constexpr double kMaxImplantExtent = 300e-3;  // [m]
+
+void check_implant_size(const TriMesh& m, const std::filesystem::path& file,
+                        const std::string& units, const char* key) {
+  Eigen::Vector3d lo = m.vertices.front(), hi = m.vertices.front();
+  for (const auto& v : m.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const double extent = (hi - lo).maxCoeff();
+  if (extent >= kMinImplantExtent && extent <= kMaxImplantExtent) return;
+  const double in_units = extent / (units == "mm" ? kMm : 1.0);
+  const char* hint = extent < kMinImplantExtent
+                         ? (units == "mm" ? " (is the file in metres? set implant.mesh.units = \"m\")" : "")
+                         : (units == "m" ? " (is the file in mm? set implant.mesh.units = \"mm\")" : "");
+  char size[64], buf[400];
+  if (units == "mm") {
+    std::snprintf(size, sizeof size, "%g mm", in_units);
+  } else {
+    std::snprintf(size, sizeof size, "%g %s (%g mm)", in_units, units.c_str(), extent / kMm);
+  }
+  std::snprintf(buf, sizeof buf,
+                "%s: implant.mesh.%s spans %s at its largest extent, but a knee component "
+                "spans %g-%g mm%s.",
+                file.string().c_str(), key, size, kMinImplantExtent / kMm,
+                kMaxImplantExtent / kMm, hint);
+  throw InputError(buf);
+}
+
 Implant make_implant(const Config& c, double& base_y) {
   Implant imp;
   if (c.implant_kind == "generic") {
@@ -51,9 +81,11 @@ Implant make_implant(const Config& c, double& base_y) {
     o.translation_m = -Eigen::Vector3d(c.femur_origin_mm[0], c.femur_origin_mm[1],
                                        c.femur_origin_mm[2]) * kMm;
     imp.femur = load_mesh(resolve_path(c, c.femur_mesh), o);
+    check_implant_size(imp.femur, resolve_path(c, c.femur_mesh), c.mesh_units, "femur");
     o.translation_m.setZero();
     o.require_closed = c.insert_closed;
     imp.insert = load_mesh(resolve_path(c, c.insert_mesh), o);
+    check_implant_size(imp.insert, resolve_path(c, c.insert_mesh), c.mesh_units, "insert");
     base_y = c.insert_base_y_mm * kMm;
     // put the insert base plane at y = 0 of T
     for (auto& v : imp.insert.vertices) v.y() -= base_y;

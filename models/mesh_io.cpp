@@ -4,6 +4,8 @@
 #include <assimp/scene.h>
 
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <assimp/Importer.hpp>
 #include <cstdint>
 #include <cstring>
@@ -64,6 +66,31 @@ TriMesh gather_and_weld(const aiScene& scene) {
   return m;
 }
 
+// every file coordinate finite and, in metres, within kMaxCoordinate_m: a NaN or 1e30 vertex
+// would otherwise reach the distance field (a grid sized by the bounding box) or be dropped
+// silently with its faces
+void check_coordinates(const std::filesystem::path& file, const TriMesh& m, double scale,
+                       const std::string& units) {
+  for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const double v = m.vertices[i][k];
+      const char axis = static_cast<char>('x' + k);
+      if (!std::isfinite(v)) {
+        fail(file, "vertex " + std::to_string(i) + " has " + axis + " = " + std::to_string(v) +
+                       "; every coordinate must be a finite number.");
+      }
+      if (std::abs(v * scale) > kMaxCoordinate_m) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "vertex %zu has %c = %g %s, implausibly far for a knee implant; "
+                      "coordinates must lie within +-%g m (check implant.mesh.units).",
+                      i, axis, v, units.c_str(), kMaxCoordinate_m);
+        fail(file, buf);
+      }
+    }
+  }
+}
+
 void put_f32(std::string& out, double v) {
   const float f = static_cast<float>(v);
   char b[4];
@@ -101,6 +128,7 @@ TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& op
   }
   TriMesh m = gather_and_weld(*scene);
   if (m.triangles.empty()) fail(file, "the mesh has no triangles.");
+  check_coordinates(file, m, scale, options.units);
 
   // units, rotation, mirror, translation
   for (Eigen::Vector3d& v : m.vertices) {

@@ -22,10 +22,14 @@ struct MeshImportOptions {
   bool require_closed = false;  // reject a mesh with open or non-manifold edges
 };
 
+// the largest coordinate magnitude accepted, in metres: ten times a body height, so that a
+// mesh placed in a lab frame passes while a 1e30 or millimetre-declared-as-metre vertex fails
+inline constexpr double kMaxCoordinate_m = 10.0;
+
 // reads a triangle mesh and maps it into the project frame: p = rotation * scale * p_file,
 // then z -> -z when mirror_z, then + translation_m. Throws InputError naming the file for a
 // missing file, an unreadable or unsupported file, an empty mesh, a rotation that is not proper
-// orthonormal, unknown units, and (when require_closed) a mesh with open edges, giving
+// orthonormal, unknown units, a non-finite coordinate or one beyond kMaxCoordinate_m, and (when require_closed) a mesh with open edges, giving
 // their count.
 TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& options = {});
 

@@ -103,6 +103,26 @@ TEST_CASE("config errors name the file or key, the value and the allowed range")
     check_mentions(input_error([&] { models::build_model(c); }),
                    {"open_insert.stl", "not closed", "4 open edges"});
   }
+  SUBCASE("mesh units that do not match the implant's size") {
+    // reference: a knee component spans 15-300 mm; a 60 mm box in metres declared as mm is
+    // 0.06 mm, and the message says which unit would fit
+    const fs::path insert = tmp.path / "insert_m.stl", femur = tmp.path / "femur_m.stl";
+    models::save_mesh(insert, test::make_box({-0.03, 0.0, -0.03}, {0.03, 0.01, 0.03}));
+    models::save_mesh(femur, test::make_box({-0.02, 0.0, -0.02}, {0.02, 0.02, 0.02}));
+    const models::Config c = test::default_config(
+        {"implant.kind=\"mesh\"", "implant.mesh.femur=\"" + femur.string() + "\"",
+         "implant.mesh.insert=\"" + insert.string() + "\"", "implant.mesh.units=\"mm\""});
+    check_mentions(input_error([&] { models::build_model(c); }),
+                   {"femur_m.stl", "implant.mesh.femur spans 0.04 mm", "15-300 mm",
+                    "implant.mesh.units = \"m\""});
+    // a 400 mm box (a plausible coordinate, an implausible implant) declared in metres
+    models::save_mesh(femur, test::make_box({-0.2, 0.0, -0.02}, {0.2, 0.02, 0.02}));
+    const models::Config big = test::default_config(
+        {"implant.kind=\"mesh\"", "implant.mesh.femur=\"" + femur.string() + "\"",
+         "implant.mesh.insert=\"" + insert.string() + "\""});
+    check_mentions(input_error([&] { models::build_model(big); }),
+                   {"femur_m.stl", "spans 0.4 m (400 mm)", "implant.mesh.units = \"mm\""});
+  }
   SUBCASE("unreadable mesh file") {
     const fs::path junk = tmp.write("junk.stl", "this is not a mesh\n");
     const models::Config c = test::default_config(

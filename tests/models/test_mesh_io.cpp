@@ -158,6 +158,27 @@ TEST_CASE("import errors name the file") {
         std::string::npos);
 }
 
+TEST_CASE("non-finite and implausibly far coordinates are refused with the vertex") {
+  // reference: a NaN or 1e30 vertex must never reach the distance field (issue 15); the limit
+  // is kMaxCoordinate_m = 10 m after the unit scale
+  TempDir dir;
+  CHECK(import_error(dir.write("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n"))
+            .find("vertex 2 has y = nan; every coordinate must be a finite number.") !=
+        std::string::npos);
+  TriMesh huge = kneesim::models::make_generic_insert({}, 4e-3);
+  huge.vertices[5].x() = 1e30;
+  const auto stl = dir.path / "huge.stl";
+  save_mesh(stl, huge);
+  const std::string h = import_error(stl);
+  CHECK(h.find(stl.string() + ": vertex ") == 0);
+  CHECK(h.find("has x = 1e+30 m, implausibly far for a knee implant; coordinates must lie "
+               "within +-10 m (check implant.mesh.units).") != std::string::npos);
+  // a millimetre file declared as metres: 40 "m" is beyond the limit
+  const auto obj = dir.write("mm_as_m.obj", "v 0 0 0\nv 40 0 0\nv 0 40 0\nf 1 2 3\n");
+  CHECK(import_error(obj).find("has x = 40 m, implausibly far") != std::string::npos);
+  CHECK(import_error(obj, mm_options()).empty());
+}
+
 TEST_CASE("real Grand Challenge meshes import closed with the README's volume") {
   const auto dm = data_dir() / "gc6_dm";
   if (!std::filesystem::exists(dm / "tibial_insert.stl")) {

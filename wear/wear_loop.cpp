@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <iterator>
+#include <string>
 
 #include "engine/errors.h"
 #include "tools/io/atomic_file.h"
@@ -46,6 +49,40 @@ void fill_wear_figures(const engine::InsertSurface& surface, const std::vector<d
   }
   r.volume = volume0 - models::enclosed_volume(worn);
 }
+
+}  // namespace
+
+std::string check_update_record(const UpdateRecord& r, bool closed_insert) {
+  const double fields[] = {r.volume,       r.volume_depth,  r.max_depth,
+                           r.medial_volume, r.lateral_volume, r.contact_area,
+                           r.peak_pressure, r.mean_peak_pressure, r.ap_rom, r.ie_rom};
+  const char* names[] = {"volume",       "volume_depth",  "max_depth",
+                         "medial_volume", "lateral_volume", "contact_area",
+                         "peak_pressure", "mean_peak_pressure", "ap_rom", "ie_rom"};
+  const long cycles = static_cast<long>(r.cycles);
+  for (size_t i = 0; i < std::size(fields); ++i) {
+    if (!std::isfinite(fields[i])) {
+      return "after " + std::to_string(cycles) + " cycles the " + names[i] +
+             " of the update is not a finite number";
+    }
+  }
+  if (closed_insert && r.volume_depth > 0.0) {
+    const double rel = (r.volume - r.volume_depth) / r.volume_depth;
+    if (std::abs(rel) > kVolumeBookkeepingTolerance) {
+      char buf[300];
+      std::snprintf(buf, sizeof buf,
+                    "after %ld cycles the enclosed-volume loss %.4g mm^3 and the depth integral "
+                    "%.4g mm^3 differ by %.3g %% (allowed %.3g %%): the worn geometry is not "
+                    "consistent with the wear depth",
+                    cycles, r.volume * 1e9, r.volume_depth * 1e9, 100.0 * rel,
+                    100.0 * kVolumeBookkeepingTolerance);
+      return buf;
+    }
+  }
+  return "";
+}
+
+namespace {
 
 // the largest step with the given safety for a contact frequency omega [rad/s]
 double stable_step_for(const engine::Model& model, double omega, double safety) {
@@ -124,6 +161,7 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
   engine::Model model = pristine.model;
   const engine::InsertSurface& surface0 = pristine.model.insert;
   const double volume0 = models::enclosed_volume(pristine.implant.insert);
+  const bool closed_insert = pristine.implant.insert_volume > 0.0;
   models::TriMesh insert = pristine.implant.insert;
   std::vector<double> depth(surface0.vertices_T.size(), 0.0);
   engine::State state = engine::make_initial_state(model);
@@ -227,6 +265,12 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
     r.cycles = static_cast<double>(cycles_done);
     r.refinements = refinements;
     fill_wear_figures(surface0, depth, volume0, insert, r);
+    // a result with NaN or inconsistent volumes never passes for a finished run
+    if (std::string why = check_update_record(r, closed_insert); !why.empty()) {
+      result.status = engine::StepStatus::kNotFinite;
+      result.message = why;
+      break;
+    }
     result.records.push_back(r);
     if (!o.checkpoint.empty()) {
       Checkpoint c;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "engine/errors.h"
+#include "loads/iso14243/text_table.h"
 
 namespace kneesim::diagnosis {
 namespace {
@@ -76,6 +77,7 @@ CsvTable read_csv_table(const std::string& path) {
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
+    if (line_no == 1) loads::strip_utf8_bom(line);
     if (trim(line).empty() || trim(line)[0] == '#') continue;
     if (t.header.empty()) {
       t.header = split(line);

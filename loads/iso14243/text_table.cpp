@@ -53,6 +53,12 @@ bool parse_directive(const std::string& comment, std::string& key, std::string& 
 
 }  // namespace
 
+bool strip_utf8_bom(std::string& first_line) {
+  if (first_line.rfind("\xEF\xBB\xBF", 0) != 0) return false;
+  first_line.erase(0, 3);
+  return true;
+}
+
 std::string display_path(const std::filesystem::path& file) { return file.string(); }
 
 int TextTable::column(const std::string& name) const {
@@ -90,6 +96,7 @@ TextTable read_text_table(const std::filesystem::path& file, TextFormat format) 
   int line_no = 0;
   while (std::getline(in, raw)) {
     ++line_no;
+    if (line_no == 1) strip_utf8_bom(raw);
     if (!raw.empty() && raw.back() == '\r') raw.pop_back();
     std::string s = trim(raw);
     // the .sto header block ends with `endheader`

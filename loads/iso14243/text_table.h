@@ -35,6 +35,10 @@ enum class TextFormat {
 // ragged rows (naming the line and the cell counts)
 TextTable read_text_table(const std::filesystem::path& file, TextFormat format);
 
+// removes a leading UTF-8 byte-order mark (EF BB BF), which spreadsheets write at the start of
+// "CSV UTF-8" files; true when one was removed. Readers call it on the first line only.
+bool strip_utf8_bom(std::string& first_line);
+
 // a path as it should appear in messages
 std::string display_path(const std::filesystem::path& file);
 

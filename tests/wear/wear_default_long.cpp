@@ -3,8 +3,10 @@
 // UHMWPE (k = 2.643e-10 mm^3/(N mm)), a geometry update every 250 000 cycles. References:
 //  - volume bookkeeping at every update: enclosed-volume loss vs depth integral within 1 %
 //    (issue 3 acceptance; the difference grows with depth as the dish's curvature matters);
-//  - the wear rate within the acceptance band 5-50 mm^3 per million cycles (simulators report
-//    about 15-25 for conventional UHMWPE; the materials study 24.9 predicted, 23.4 measured);
+//  - the wear rate against the measurement of the same rig with the same wear factor: Pal 2008
+//    measured 78 and 97 mg after 5 Mc on the Stanmore simulator (NexGen CR), i.e. 16.8 and
+//    20.9 mm^3/Mc at 0.93 mg/mm^3, mean 18.8 mm^3/Mc; the generic implant is not the NexGen, so
+//    the band is that mean +-50 %: 9.4-28.2 mm^3/Mc (measured here: 14.1);
 //  - the worn insert stays watertight, with no face inverted against the pristine one.
 #include <doctest/doctest.h>
 
@@ -20,7 +22,7 @@
 
 using namespace kneesim;
 
-TEST_CASE("default 5 Mc UHMWPE prediction: bookkeeping within 1 %, rate within 5-50 mm^3/Mc") {
+TEST_CASE("default 5 Mc UHMWPE prediction: bookkeeping within 1 %, rate within Pal 2008's band") {
   const auto t0 = std::chrono::steady_clock::now();
   const models::BuiltModel built = models::build_model(models::load_config("", {}));
   wear::WearOptions o;
@@ -47,8 +49,8 @@ TEST_CASE("default 5 Mc UHMWPE prediction: bookkeeping within 1 %, rate within 5
               "medial %.2f / lateral %.2f mm^3, worst bookkeeping difference %.2e, %.1f s\n",
               last.volume * 1e9, rate, last.max_depth * 1e3, last.medial_volume * 1e9,
               last.lateral_volume * 1e9, worst, seconds);
-  CHECK(rate > 5.0);
-  CHECK(rate < 50.0);
+  CHECK(rate > 0.5 * 18.82);
+  CHECK(rate < 1.5 * 18.82);
   CHECK(models::check_mesh(r.worn).watertight());
   CHECK(wear::count_inverted_faces(built.implant.insert, r.worn) == 0);
 }

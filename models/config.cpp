@@ -1,5 +1,5 @@
 // Config loading: keys are registered once with their type and range; the file (read through
-// the toml++ adapter, tools/io/toml_file.h) and the --set overrides are flattened to dotted keys
+// the toml++ adapter, engine/io/toml_file.h) and the --set overrides are flattened to dotted keys
 // and assigned through the registry, so every error names file, line, key, value and the allowed
 // range.
 #include "models/config.h"
@@ -11,7 +11,7 @@
 #include <variant>
 
 #include "engine/errors.h"
-#include "tools/io/toml_file.h"
+#include "engine/io/toml_file.h"
 
 namespace kneesim::models {
 namespace {

@@ -7,7 +7,7 @@
 #include <array>
 
 #include "engine/errors.h"
-#include "tools/io/atomic_file.h"
+#include "engine/io/atomic_file.h"
 
 namespace kneesim::wear {
 namespace {

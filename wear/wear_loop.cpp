@@ -7,7 +7,7 @@
 #include <string>
 
 #include "engine/errors.h"
-#include "tools/io/atomic_file.h"
+#include "engine/io/atomic_file.h"
 #include "wear/checkpoint.h"
 #include "wear/geometry_update.h"
 

@@ -1,4 +1,4 @@
-// The toml++ adapter (tools/io/toml_file.h) and the config reader on top of it. References:
+// The toml++ adapter (engine/io/toml_file.h) and the config reader on top of it. References:
 // the TOML text written in each case (keys, values, the line each sits on), and the error
 // contract of design.md: one sentence naming the file and line (or key) of the bad input.
 #include <doctest/doctest.h>
@@ -6,10 +6,10 @@
 #include <string>
 
 #include "engine/errors.h"
+#include "engine/io/toml_file.h"
 #include "models/config.h"
 #include "temp_dir.h"
 #include "tests/loads/input_error.h"
-#include "tools/io/toml_file.h"
 
 using kneesim::InputError;
 using kneesim::test::TempDir;

@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/errors.h"
-#include "tools/io/json_out.h"
-#include "tools/io/plot.h"
-#include "tools/io/table.h"
+#include "engine/io/json_out.h"
+#include "engine/io/plot.h"
+#include "engine/io/table.h"
 #include "tools/kneesim/bor_options.h"
 #include "tools/kneesim/commands.h"
 #include "wear/bor/bor_simulation.h"

@@ -4,14 +4,14 @@
 #include <sstream>
 #include <mutex>
 
+#include "analysis/run/wear_job.h"
 #include "engine/errors.h"
+#include "engine/io/atomic_file.h"
+#include "engine/io/json_out.h"
+#include "engine/io/plot.h"
+#include "engine/io/table.h"
 #include "models/config.h"
-#include "tools/io/atomic_file.h"
-#include "tools/io/json_out.h"
-#include "tools/io/plot.h"
-#include "tools/io/table.h"
 #include "tools/kneesim/commands.h"
-#include "tools/kneesim/wear_job.h"
 
 namespace kneesim::cli {
 namespace {
@@ -32,11 +32,11 @@ void run(const CompareArgs& a) {
   std::vector<models::Override> base;
   for (const auto& s : a.sets) base.push_back(models::parse_override(s));
   // every material is checked before any simulation starts
-  std::vector<WearJob> jobs;
+  std::vector<run::WearJob> jobs;
   for (const auto& m : a.materials) {
     std::vector<models::Override> o = base;
     o.push_back({"material.name", "\"" + m + "\""});
-    WearJob job;
+    run::WearJob job;
     job.config = models::load_config(a.config, o);
     job.cycles = a.cycles;
     job.update_every = a.update_every;
@@ -46,14 +46,14 @@ void run(const CompareArgs& a) {
     std::ostringstream id;
     id << "compare v1 " << m << " " << a.cycles << " " << a.update_every;
     job.identity_text = id.str();
-    check_wear_job(job);
+    run::check_wear_job(job);
     jobs.push_back(std::move(job));
   }
   fs::create_directories(a.out);
   for (const char* f : {"comparison.csv", "comparison.md", "comparison.json"}) fs::remove(fs::path(a.out) / f);
   std::mutex print;
   const std::vector<nlohmann::json> results =
-      run_wear_jobs(jobs, a.jobs, [&](size_t i, const nlohmann::json& r) {
+      run::run_wear_jobs(jobs, a.jobs, [&](size_t i, const nlohmann::json& r) {
         if (a.quiet) return;
         std::lock_guard<std::mutex> lock(print);
         std::fprintf(stderr, "%s done: %.1f mm^3 in %.1f s\n", a.materials[i].c_str(),

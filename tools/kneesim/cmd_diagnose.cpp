@@ -4,14 +4,16 @@
 // measured file, assembles a DiagnosisCase and hands it to diagnose() and write_diagnosis().
 // Cases: bor (block-on-ring). The knee-wear and kinematics cases plug in the same way: add an
 // add_diagnose_<case>(CLI::App* diagnose) function and one call line below.
+#include <cstdio>
 #include <memory>
 
 #include "analysis/diagnosis/bor_case.h"
+#include "analysis/diagnosis/diagnosis_output.h"
 #include "engine/errors.h"
 #include "tools/kneesim/bor_options.h"
 #include "tools/kneesim/commands.h"
 #include "tools/kneesim/diagnose_knee.h"
-#include "tools/kneesim/diagnosis_output.h"
+#include "tools/kneesim/diagnose_options.h"
 
 namespace kneesim::cli {
 namespace {
@@ -42,7 +44,7 @@ void run_diagnose_bor(const DiagnoseBorOptions& o) {
   bo.steady_state_from = o.steady_state_from_cycles;
   const auto c = diagnosis::make_bor_case(diagnosis::read_bor_measured(o.measured), bo);
   const auto r = diagnosis::diagnose(c, options);
-  write_diagnosis(c, r, o.common.out);
+  std::printf("%s", diagnosis::write_diagnosis(c, r, o.common.out).c_str());
 }
 
 void add_diagnose_bor(CLI::App* diagnose) {

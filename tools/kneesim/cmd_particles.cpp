@@ -10,11 +10,11 @@
 #include <string>
 
 #include "engine/errors.h"
-#include "tools/io/atomic_file.h"
-#include "tools/io/json_out.h"
-#include "tools/io/plot.h"
-#include "tools/io/progress.h"
-#include "tools/io/table.h"
+#include "engine/io/atomic_file.h"
+#include "engine/io/json_out.h"
+#include "engine/io/plot.h"
+#include "engine/io/progress.h"
+#include "engine/io/table.h"
 #include "tools/kneesim/commands.h"
 #include "wear/particles/fft.h"
 #include "wear/particles/particle_model.h"

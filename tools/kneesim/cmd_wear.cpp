@@ -3,12 +3,12 @@
 #include <cstdio>
 #include <sstream>
 
+#include "analysis/run/wear_job.h"
 #include "engine/errors.h"
+#include "engine/io/atomic_file.h"
+#include "engine/io/table.h"
 #include "models/config.h"
-#include "tools/io/atomic_file.h"
-#include "tools/io/table.h"
 #include "tools/kneesim/commands.h"
-#include "tools/kneesim/wear_job.h"
 
 namespace kneesim::cli {
 namespace {
@@ -32,9 +32,9 @@ struct WearArgs {
 // the same prediction at several update intervals, concurrently; the finest is the reference
 void run_convergence(const WearArgs& a, const std::vector<models::Override>& overrides) {
   namespace fs = std::filesystem;
-  std::vector<WearJob> jobs;
+  std::vector<run::WearJob> jobs;
   for (long every : a.convergence) {
-    WearJob job;
+    run::WearJob job;
     job.config = models::load_config(a.config, overrides);
     job.cycles = a.cycles;
     job.update_every = every;
@@ -43,10 +43,10 @@ void run_convergence(const WearArgs& a, const std::vector<models::Override>& ove
     job.depth_maps = false;
     job.allow_any_wear_factor = a.allow_any_wear_factor;
     job.identity_text = "convergence " + std::to_string(every);
-    check_wear_job(job);
+    run::check_wear_job(job);
     jobs.push_back(std::move(job));
   }
-  const std::vector<nlohmann::json> results = run_wear_jobs(jobs);
+  const std::vector<nlohmann::json> results = run::run_wear_jobs(jobs);
   // reference: the shortest interval
   size_t ref = 0;
   for (size_t i = 1; i < jobs.size(); ++i)
@@ -81,7 +81,7 @@ void run(const WearArgs& a) {
     run_convergence(a, overrides);
     return;
   }
-  WearJob job;
+  run::WearJob job;
   job.config = models::load_config(a.config, overrides);
   job.cycles = a.cycles;
   job.update_every = a.update_every;
@@ -99,7 +99,7 @@ void run(const WearArgs& a) {
   for (const auto& p : a.law_params) id << " " << p;
   for (long s : a.schedule) id << " " << s;
   job.identity_text = id.str();
-  const nlohmann::json s = run_wear_job(job);
+  const nlohmann::json s = run::run_wear_job(job);
   if (!a.quiet) {
     std::printf("%s: %.2f mm^3 (%.2f mg) after %ld cycles, %.2f mm^3 per million cycles, max "
                 "depth %.3f mm, %d updates in %.1f s\nresults in %s\n",

@@ -1,225 +1,49 @@
 #include "tools/kneesim/diagnose_knee.h"
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <memory>
 
-#include "analysis/diagnosis/kinematics_case.h"
-#include "analysis/diagnosis/knee_wear_case.h"
-#include "engine/errors.h"
-#include "models/build_model.h"
-#include "tools/io/atomic_file.h"
-#include "tools/io/json_out.h"
-#include "tools/kneesim/diagnosis_output.h"
-#include "wear/wear_loop.h"
+#include "analysis/diagnosis/knee_diagnosis.h"
+#include "tools/kneesim/diagnose_options.h"
 
 namespace kneesim::cli {
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// appends a section to the report written by write_diagnosis (atomically again)
-void append_report(const std::filesystem::path& out, const std::string& section) {
-  const std::filesystem::path md = out / "diagnosis.md";
-  io::write_file_atomic(md, io::read_file(md) + "\n" + section);
-}
-
 struct DiagnoseKneeWearOptions {
-  std::string measured, config;           // CSV and TOML paths
-  std::vector<std::string> sets;          // key=value overrides of every condition
-  std::string calibration_condition;      // "" = the first condition in the CSV
-  double steady_state_from_cycles = 5e5;  // [cycles]
-  int check_updates = 4;                  // wear-loop updates of the check, 0 = none [-]
+  diagnosis::KneeWearDiagnosisOptions run;
   DiagnoseCommonOptions common;
 };
 
-// the approximation check: the full geometry-updating wear loop (`kneesim wear`) with the
-// extended model's law on the calibration condition, against the linear prediction
-nlohmann::json check_linear_wear(const diagnosis::DiagnosisCase& c,
-                                 const diagnosis::DiagnosisResult& r,
-                                 const diagnosis::KneeWearTables& tables,
-                                 const std::map<std::string, models::Config>& configs,
-                                 const std::string& condition, double p_ref, int updates) {
-  const auto t0 = std::chrono::steady_clock::now();
-  double cycles = 0.0;
-  for (const auto& m : c.measured.rows) {
-    if (m.group == condition) cycles = std::max(cycles, m.x);
-  }
-  const auto& fit = r.extended();
-  const Eigen::VectorXd b = fit.params.head(1), ep = fit.params.tail(fit.params.size() - 1);
-  diagnosis::KneeWearParams p = diagnosis::knee_wear_params(fit.effect, b, ep, p_ref);
-  wear::WearOptions o;
-  o.total_cycles = std::max(1L, std::lround(cycles));
-  o.update_every = std::max(1L, o.total_cycles / updates);
-  o.law.wear_factor = p.k;
-  o.law.friction = tables.at(condition)->friction();
-  switch (fit.effect) {
-    case diagnosis::Effect::pressure_dependent_wear:
-      o.law.law = wear::WearLaw::kPressureDependent;
-      o.law.alpha = p.pressure_exponent;
-      o.law.p_ref = p_ref;
-      break;
-    case diagnosis::Effect::cross_shear:
-      o.law.law = wear::WearLaw::kCrossShear;
-      o.law.beta = p.cross_shear_gain;
-      break;
-    case diagnosis::Effect::running_in:
-      o.law.law = wear::WearLaw::kRunningIn;
-      o.law.running_in_excess = p.running_in_excess;
-      o.law.running_in_cycles = p.running_in_cycles;
-      break;
-    default:  // creep adds depth outside the loop: check the Archard part
-      o.law.law = wear::WearLaw::kArchard;
-      p.effect = diagnosis::Effect::none;
-      break;
-  }
-  const wear::WearResult w = wear::run_wear(models::build_model(configs.at(condition)), o);
-  nlohmann::json j;
-  j["condition"] = condition;
-  j["cycles"] = static_cast<double>(o.total_cycles);
-  j["updates"] = static_cast<int>(w.records.size()) - 1;
-  j["law"] = std::string(diagnosis::effect_name(p.effect));
-  if (w.status != engine::StepStatus::kOk || w.records.empty()) {
-    j["status"] = "failed: " + w.message;
-    return j;
-  }
-  const auto& last = w.records.back();
-  const double n = last.cycles;
-  const double v_lin = tables.at(condition)->volume(p, n) * 1e9;
-  const double d_lin = tables.at(condition)->max_depth(p, n) * 1e3;
-  j["status"] = "complete";
-  j["wear_loop_volume_mm3"] = last.volume * 1e9;
-  j["linear_volume_mm3"] = v_lin;
-  j["volume_difference_pct"] = 100.0 * (v_lin - last.volume * 1e9) / (last.volume * 1e9);
-  j["wear_loop_max_depth_mm"] = last.max_depth * 1e3;
-  j["linear_max_depth_mm"] = d_lin;
-  j["max_depth_difference_pct"] = 100.0 * (d_lin - last.max_depth * 1e3) / (last.max_depth * 1e3);
-  j["seconds"] = seconds_since(t0);
-  return j;
-}
-
 void run_diagnose_knee_wear(const DiagnoseKneeWearOptions& o) {
-  const auto t0 = std::chrono::steady_clock::now();
-  if (!(o.steady_state_from_cycles >= 0.0 && o.steady_state_from_cycles <= 1e9)) {
-    throw InputError("command line: --steady-state-from-cycles = " +
-                     std::to_string(o.steady_state_from_cycles) +
-                     " is outside the allowed range [0, 1e9].");
-  }
-  if (o.check_updates < 0 || o.check_updates > 100) {
-    throw InputError("command line: --check-updates = " + std::to_string(o.check_updates) +
-                     " is outside the allowed range [0, 100].");
-  }
-  const diagnosis::DiagnosisOptions options = make_diagnosis_options(o.common);
-  diagnosis::MeasuredData data = diagnosis::read_knee_wear_measured(o.measured);
-  const auto configs = diagnosis::knee_condition_configs(data, o.config, o.sets);
-  const auto t_sim = std::chrono::steady_clock::now();
-  const diagnosis::KneeWearTables tables = diagnosis::make_knee_wear_tables(configs);
-  const double sim_seconds = seconds_since(t_sim);
-  diagnosis::KneeWearCaseOptions ko;
-  ko.calibration_condition = o.calibration_condition;
-  ko.steady_state_from = o.steady_state_from_cycles;
-  const double p_ref = diagnosis::knee_reference_pressure(tables, data, ko);
-  const auto c = diagnosis::make_knee_wear_case(std::move(data), tables, ko);
-  const auto r = diagnosis::diagnose(c, options);
-  write_diagnosis(c, r, o.common.out);
-
-  std::string md = "## Forward model and its approximation\n\nEach condition was simulated once "
-                   "(one settling and one observed gait cycle on the pristine insert, " +
-                   fmt("%.1f", sim_seconds) + " s for " + std::to_string(tables.size()) +
-                   " conditions); every prediction is wear linear in cycles on that cycle.\n\n"
-                   "| condition | mean contact pressure (MPa) | mean cross-shear ratio | "
-                   "sum A p ds per cycle (J) |\n|---|---|---|---|\n";
-  for (const auto& [name, t] : tables) {
-    md += "| " + name + " | " + fmt("%.2f", t->mean_pressure() * 1e-6) + " | " +
-          fmt("%.4f", t->mean_cross_shear()) + " | " + fmt("%.4g", t->work()) + " |\n";
-  }
-  nlohmann::json check;
-  if (o.check_updates > 0) {
-    const std::string cal = ko.calibration_condition.empty() ? c.measured.rows.front().group
-                                                             : ko.calibration_condition;
-    check = check_linear_wear(c, r, tables, configs, cal, p_ref, o.check_updates);
-    io::write_json(std::filesystem::path(o.common.out) / "approximation_check.json", check);
-    if (check["status"] == "complete") {
-      md += "\nCheck against the full wear loop (`kneesim wear`, geometry updated every " +
-            fmt("%.0f", check["cycles"].get<double>() / check["updates"].get<int>()) +
-            " cycles, law " + check["law"].get<std::string>() + ") on condition " + cal +
-            " to " + fmt("%.0f", check["cycles"].get<double>()) + " cycles: volume " +
-            fmt("%.2f", check["wear_loop_volume_mm3"].get<double>()) + " mm³ (loop) vs " +
-            fmt("%.2f", check["linear_volume_mm3"].get<double>()) + " mm³ (linear), " +
-            fmt("%+.1f", check["volume_difference_pct"].get<double>()) + " %; maximum depth " +
-            fmt("%.4f", check["wear_loop_max_depth_mm"].get<double>()) + " vs " +
-            fmt("%.4f", check["linear_max_depth_mm"].get<double>()) + " mm, " +
-            fmt("%+.1f", check["max_depth_difference_pct"].get<double>()) + " % (" +
-            fmt("%.1f", check["seconds"].get<double>()) + " s).\n";
-    } else {
-      md += "\nThe check against the full wear loop did not complete: " +
-            check["status"].get<std::string>() + ".\n";
-    }
-  }
-  md += "\nTotal time " + fmt("%.1f", seconds_since(t0)) + " s.\n";
-  append_report(o.common.out, md);
-  std::printf("knee-wear: %zu conditions simulated in %.1f s, total %.1f s\n", tables.size(),
-              sim_seconds, seconds_since(t0));
-  if (!check.is_null() && check["status"] == "complete") {
+  diagnosis::KneeWearDiagnosisOptions ro = o.run;
+  ro.options = make_diagnosis_options(o.common);
+  ro.out = o.common.out;
+  const diagnosis::KneeWearDiagnosisReport r = diagnosis::run_knee_wear_diagnosis(ro);
+  std::printf("%s", r.summary_line.c_str());
+  std::printf("knee-wear: %zu conditions simulated in %.1f s, total %.1f s\n", r.conditions,
+              r.sim_seconds, r.total_seconds);
+  if (!r.check.is_null() && r.check["status"] == "complete") {
     std::printf("approximation check: linear vs wear loop volume %+.1f %%, max depth %+.1f %%\n",
-                check["volume_difference_pct"].get<double>(),
-                check["max_depth_difference_pct"].get<double>());
+                r.check["volume_difference_pct"].get<double>(),
+                r.check["max_depth_difference_pct"].get<double>());
   }
 }
 
 struct DiagnoseKinematicsOptions {
-  std::string measured, config;  // CSV or .sto, and TOML paths
-  std::vector<std::string> sets; // key=value overrides
-  double stance_end_pct = 60.0;  // end of stance in the phase split [%]
+  diagnosis::KinematicsDiagnosisOptions run;
   bool multi_start = false;      // multi-start the full-data fits
   DiagnoseCommonOptions common;
 };
 
 void run_diagnose_kinematics(const DiagnoseKinematicsOptions& o) {
-  const auto t0 = std::chrono::steady_clock::now();
-  if (!(o.stance_end_pct > 0.0 && o.stance_end_pct < 100.0)) {
-    throw InputError("command line: --stance-end-pct = " + std::to_string(o.stance_end_pct) +
-                     " is outside the allowed range (0, 100).");
-  }
-  diagnosis::DiagnosisOptions options = make_diagnosis_options(o.common);
-  options.multi_start = o.multi_start;
-  std::vector<models::Override> overrides;
-  for (const auto& s : o.sets) overrides.push_back(models::parse_override(s));
-  const models::Config config = models::load_config(o.config, overrides);
-  auto data = diagnosis::read_kinematics_measured(o.measured,
-                                                  diagnosis::femoral_reference_point(config));
-  auto sim = std::make_shared<diagnosis::KinematicsSimulator>(config);
-  diagnosis::KinematicsCaseOptions ko;
-  ko.stance_end_pct = o.stance_end_pct;
-  const auto c = diagnosis::make_kinematics_case(std::move(data), sim, ko);
-  const auto r = diagnosis::diagnose(c, options);
-  write_diagnosis(c, r, o.common.out);
-  const auto& e = r.extended();
-  std::string md = "## Forward runs\n\n" + std::to_string(sim->simulations()) +
-                   " rig simulations of " + std::to_string(config.cycles) + " gait cycles each (" +
-                   fmt("%.1f", sim->seconds()) + " s; model build " +
-                   fmt("%.1f", sim->build_seconds()) + " s; total " +
-                   fmt("%.1f", seconds_since(t0)) + " s; bootstrap " +
-                   std::to_string(options.bootstrap) + " resamples).\n";
-  if (e.effect != diagnosis::Effect::none) {
-    md += "\nThe extension runs forward with `kneesim run " +
-          (o.config.empty() ? std::string() : o.config + " ") +
-          sim->equivalent_sets(e.effect, e.params.tail(e.params.size() - 2)) + "` (plus the "
-          "command's own --set options); the offsets are not part of the model.\n";
-  }
-  append_report(o.common.out, md);
-  std::printf("kinematics: %d simulations in %.1f s, total %.1f s\n", sim->simulations(),
-              sim->seconds(), seconds_since(t0));
+  diagnosis::KinematicsDiagnosisOptions ro = o.run;
+  ro.options = make_diagnosis_options(o.common);
+  ro.options.multi_start = o.multi_start;
+  ro.out = o.common.out;
+  const diagnosis::KinematicsDiagnosisReport r = diagnosis::run_kinematics_diagnosis(ro);
+  std::printf("%s", r.summary_line.c_str());
+  std::printf("kinematics: %d simulations in %.1f s, total %.1f s\n", r.simulations,
+              r.sim_seconds, r.total_seconds);
 }
 
 }  // namespace
@@ -230,18 +54,18 @@ void add_diagnose_knee_wear(CLI::App* diagnose) {
   CLI::App* cmd = diagnose->add_subcommand(
       "knee-wear", "knee simulator wear: CSV with condition, cycles, volume_mm3 [, max_depth_mm, "
                    "specimen]; conditions are [conditions.<name>] of the config");
-  cmd->add_option("--measured", opt->measured, "measured CSV file")->required();
-  cmd->add_option("--config", opt->config, "TOML config with the [conditions.<name>] tables")
+  cmd->add_option("--measured", opt->run.measured, "measured CSV file")->required();
+  cmd->add_option("--config", opt->run.config, "TOML config with the [conditions.<name>] tables")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--set", opt->sets, "override a config key for every condition (repeatable)");
-  cmd->add_option("--calibration-condition", opt->calibration_condition,
+  cmd->add_option("--set", opt->run.sets, "override a config key for every condition (repeatable)");
+  cmd->add_option("--calibration-condition", opt->run.calibration_condition,
                   "condition whose steady-state slope calibrates k (default: the first in the "
                   "file)");
-  cmd->add_option("--steady-state-from-cycles", opt->steady_state_from_cycles,
+  cmd->add_option("--steady-state-from-cycles", opt->run.steady_state_from_cycles,
                   "first cycle count of the steady state used by the calibration")
       ->capture_default_str();
-  cmd->add_option("--check-updates", opt->check_updates,
+  cmd->add_option("--check-updates", opt->run.check_updates,
                   "geometry updates of the full wear-loop check of the linear approximation "
                   "(0: no check)")
       ->capture_default_str();
@@ -256,11 +80,11 @@ void add_diagnose_kinematics(CLI::App* diagnose) {
   CLI::App* cmd = diagnose->add_subcommand(
       "kinematics", "tibiofemoral kinematics: CSV with gait_pct, ap_mm, ie_deg, or the DM "
                     "fluoroscopy .sto, against the force-controlled rig of the config");
-  cmd->add_option("--measured", opt->measured, "measured CSV or .sto file")->required();
-  cmd->add_option("--config", opt->config, "TOML config of the rig and implant")->required()
+  cmd->add_option("--measured", opt->run.measured, "measured CSV or .sto file")->required();
+  cmd->add_option("--config", opt->run.config, "TOML config of the rig and implant")->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--set", opt->sets, "override a config key (repeatable)");
-  cmd->add_option("--stance-end-pct", opt->stance_end_pct,
+  cmd->add_option("--set", opt->run.sets, "override a config key (repeatable)");
+  cmd->add_option("--stance-end-pct", opt->run.stance_end_pct,
                   "gait % that ends stance in the phase split")->capture_default_str();
   cmd->add_flag("--multi-start", opt->multi_start,
                 "multi-start the full-data fits (about three times the simulations)");

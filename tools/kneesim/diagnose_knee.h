@@ -1,6 +1,6 @@
 // The knee cases of `kneesim diagnose` (issue 4): knee-wear (volume and depth per condition of
 // a knee simulator test) and kinematics (measured AP and IE against the force-controlled rig).
-// Registered by cmd_diagnose.cpp; the shared outputs are in diagnosis_output.h.
+// Registered by cmd_diagnose.cpp; the work is analysis/diagnosis/knee_diagnosis.h.
 #pragma once
 
 #include <CLI/CLI.hpp>

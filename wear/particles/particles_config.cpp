@@ -4,7 +4,7 @@
 #include <set>
 
 #include "engine/errors.h"
-#include "tools/io/toml_file.h"
+#include "engine/io/toml_file.h"
 
 namespace kneesim::particles {
 namespace {

@@ -10,7 +10,7 @@
 //            correlation_length_nm peklenik_gamma lambda_s_nm seed film_thickness_nm film_E_GPa
 //            film_nu surface_csv  (peklenik_gamma: lay ratio, correlation length along x / across)
 //
-// The file is read through the toml++ adapter (tools/io/toml_file.h); unknown keys are errors.
+// The file is read through the toml++ adapter (engine/io/toml_file.h); unknown keys are errors.
 #pragma once
 
 #include <filesystem>

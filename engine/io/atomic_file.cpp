@@ -1,4 +1,4 @@
-#include "tools/io/atomic_file.h"
+#include "engine/io/atomic_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>

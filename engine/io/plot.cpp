@@ -1,4 +1,4 @@
-#include "tools/io/plot.h"
+#include "engine/io/plot.h"
 
 #include <sys/wait.h>
 #include <unistd.h>

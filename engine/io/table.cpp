@@ -1,9 +1,9 @@
-#include "tools/io/table.h"
+#include "engine/io/table.h"
 
 #include <cstdio>
 #include <stdexcept>
 
-#include "tools/io/atomic_file.h"
+#include "engine/io/atomic_file.h"
 
 namespace kneesim::io {
 

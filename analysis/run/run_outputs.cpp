@@ -1,12 +1,12 @@
-#include "tools/kneesim/run_outputs.h"
+#include "analysis/run/run_outputs.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "tools/io/vtp.h"
+#include "engine/io/vtp.h"
 
-namespace kneesim::cli {
+namespace kneesim::run {
 namespace {
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 }
@@ -147,4 +147,4 @@ void write_pressure_map(const std::filesystem::path& path, const engine::InsertS
   io::write_vtp(path, s);
 }
 
-}  // namespace kneesim::cli
+}  // namespace kneesim::run

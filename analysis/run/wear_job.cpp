@@ -1,4 +1,4 @@
-#include "tools/kneesim/wear_job.h"
+#include "analysis/run/wear_job.h"
 
 #include <atomic>
 #include <chrono>
@@ -9,20 +9,20 @@
 #include <cstdio>
 #include <numbers>
 
+#include "analysis/run/run_outputs.h"
 #include "engine/errors.h"
+#include "engine/io/json_out.h"
+#include "engine/io/plot.h"
+#include "engine/io/progress.h"
+#include "engine/io/table.h"
+#include "engine/io/vtp.h"
 #include "models/build_model.h"
-#include "tools/io/json_out.h"
-#include "tools/io/plot.h"
-#include "tools/io/progress.h"
-#include "tools/io/table.h"
-#include "tools/io/vtp.h"
-#include "tools/kneesim/run_outputs.h"
 #include "wear/archard.h"
 #include "wear/checkpoint.h"
 #include "wear/geometry_update.h"
 #include "wear/wear_loop.h"
 
-namespace kneesim::cli {
+namespace kneesim::run {
 namespace {
 
 constexpr double kM3ToMm3 = 1e9;
@@ -290,4 +290,4 @@ std::vector<nlohmann::json> run_wear_jobs(
   return results;
 }
 
-}  // namespace kneesim::cli
+}  // namespace kneesim::run

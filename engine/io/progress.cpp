@@ -1,4 +1,4 @@
-#include "tools/io/progress.h"
+#include "engine/io/progress.h"
 
 #include <unistd.h>
 

@@ -1,16 +1,17 @@
 // Output of one simulated gait cycle: kinematics table, summary figures, pressure maps.
-// Shared by `run`, `wear` and `compare`, which all report the kinematics of a cycle.
+// Shared by the gait run, the wear run and the studies, which all report the kinematics of a
+// cycle.
 #pragma once
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "engine/io/table.h"
 #include "engine/simulate.h"
 #include "models/build_model.h"
-#include "tools/io/table.h"
 
-namespace kneesim::cli {
+namespace kneesim::run {
 
 // one row per frame; every column carries its unit
 io::Table make_kinematics_table(const std::vector<engine::Frame>& frames);
@@ -35,4 +36,4 @@ nlohmann::json describe_figures(const CycleFigures& f);
 void write_pressure_map(const std::filesystem::path& path, const engine::InsertSurface& insert,
                         const std::vector<double>& pressure_Pa);
 
-}  // namespace kneesim::cli
+}  // namespace kneesim::run

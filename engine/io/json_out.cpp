@@ -1,6 +1,6 @@
-#include "tools/io/json_out.h"
+#include "engine/io/json_out.h"
 
-#include "tools/io/atomic_file.h"
+#include "engine/io/atomic_file.h"
 
 namespace kneesim::io {
 

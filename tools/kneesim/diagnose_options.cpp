@@ -1,12 +1,6 @@
-#include "tools/kneesim/diagnosis_output.h"
+#include "tools/kneesim/diagnose_options.h"
 
-#include <cstdio>
-
-#include "analysis/diagnosis/report.h"
 #include "engine/errors.h"
-#include "tools/io/atomic_file.h"
-#include "tools/io/json_out.h"
-#include "tools/io/plot.h"
 
 namespace kneesim::cli {
 
@@ -40,21 +34,6 @@ diagnosis::DiagnosisOptions make_diagnosis_options(const DiagnoseCommonOptions& 
   d.ic_threshold = o.ic_threshold;
   d.heldout_threshold = o.heldout_threshold;
   return d;
-}
-
-void write_diagnosis(const diagnosis::DiagnosisCase& c, const diagnosis::DiagnosisResult& r,
-                     const std::filesystem::path& out) {
-  io::write_file_atomic(out / "residuals.csv", diagnosis::residuals_csv(c, r));
-  io::write_file_atomic(out / "curves.csv", diagnosis::curves_csv(c, r));
-  io::write_file_atomic(out / "diagnosis.md", diagnosis::diagnosis_markdown(c, r));
-  io::write_json(out / "diagnosis.json", diagnosis::diagnosis_json(c, r));
-  const std::string effect(diagnosis::effect_name(r.effect()));
-  io::run_plot("diagnosis.py", {(out / "residuals.csv").string(), (out / "curves.csv").string(),
-                                (out / "diagnosis.png").string(),
-                                c.name + ": effect " + effect});
-  std::printf("diagnosis %s: effect %s, held-out RMSE %.4g -> %.4g (%s), gain %.3f, %.2f s -> %s\n",
-              c.name.c_str(), effect.c_str(), r.baseline.heldout_rmse, r.extended().heldout_rmse,
-              r.rmse_unit.c_str(), r.gain, r.seconds, out.string().c_str());
 }
 
 }  // namespace kneesim::cli

@@ -1,5 +1,6 @@
 // One wear simulation with all its outputs (wear.csv, summary.json, depth maps, plots,
-// checkpoint): shared by `kneesim wear` and by each material of `kneesim compare`.
+// checkpoint) as a library call: `kneesim wear`, each material of `kneesim compare` and each
+// interval of the convergence study run through it.
 #pragma once
 
 #include <filesystem>
@@ -10,7 +11,7 @@
 
 #include "models/config.h"
 
-namespace kneesim::cli {
+namespace kneesim::run {
 
 struct WearJob {
   models::Config config;
@@ -43,4 +44,4 @@ std::vector<nlohmann::json> run_wear_jobs(
     const std::vector<WearJob>& jobs, int workers = 0,
     const std::function<void(size_t, const nlohmann::json&)>& done = {});
 
-}  // namespace kneesim::cli
+}  // namespace kneesim::run

@@ -1,4 +1,4 @@
-#include "tools/io/toml_file.h"
+#include "engine/io/toml_file.h"
 
 #include <sstream>
 #include <toml++/toml.h>

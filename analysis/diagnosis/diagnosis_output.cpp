@@ -1,0 +1,36 @@
+#include "analysis/diagnosis/diagnosis_output.h"
+
+#include <cstdio>
+
+#include "analysis/diagnosis/report.h"
+#include "engine/io/atomic_file.h"
+#include "engine/io/json_out.h"
+#include "engine/io/plot.h"
+
+namespace kneesim::diagnosis {
+
+std::string write_diagnosis(const DiagnosisCase& c, const DiagnosisResult& r,
+                            const std::filesystem::path& out) {
+  io::write_file_atomic(out / "residuals.csv", residuals_csv(c, r));
+  io::write_file_atomic(out / "curves.csv", curves_csv(c, r));
+  io::write_file_atomic(out / "diagnosis.md", diagnosis_markdown(c, r));
+  io::write_json(out / "diagnosis.json", diagnosis_json(c, r));
+  const std::string effect(effect_name(r.effect()));
+  io::run_plot("diagnosis.py", {(out / "residuals.csv").string(), (out / "curves.csv").string(),
+                                (out / "diagnosis.png").string(),
+                                c.name + ": effect " + effect});
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "diagnosis %s: effect %s, held-out RMSE %.4g -> %.4g (%s), gain %.3f, %.2f s -> %s\n",
+                c.name.c_str(), effect.c_str(), r.baseline.heldout_rmse,
+                r.extended().heldout_rmse, r.rmse_unit.c_str(), r.gain, r.seconds,
+                out.string().c_str());
+  return line;
+}
+
+void append_report(const std::filesystem::path& out, const std::string& section) {
+  const std::filesystem::path md = out / "diagnosis.md";
+  io::write_file_atomic(md, io::read_file(md) + "\n" + section);
+}
+
+}  // namespace kneesim::diagnosis

@@ -1,0 +1,121 @@
+#include "analysis/run/gait_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/io/json_out.h"
+#include "engine/io/plot.h"
+#include "engine/io/progress.h"
+#include "engine/simulate.h"
+#include "loads/iso14243/kinematics.h"
+
+namespace kneesim::run {
+namespace {
+
+// removes the outputs a previous run left, so a failed run never sits next to stale results
+void clear_outputs(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(dir)) return;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name == "kinematics.csv" || name == "summary.json" || name == "kinematics.png" ||
+        name == "kinematics.partial.csv" || name == "measured_kinematics.csv" || name.rfind("pressure_", 0) == 0) {
+      fs::remove(e.path());
+    }
+  }
+}
+
+io::Table make_measured_table(const loads::MeasuredKinematics& k) {
+  io::Table t;
+  t.columns = {"gait_pct", "flexion_deg", "ap_mm", "ie_deg"};
+  for (size_t i = 0; i < k.size(); ++i) {
+    t.add_row({k.gait_pct[i], k.flexion_deg[i], k.ap_mm[i], k.ie_deg[i]});
+  }
+  return t;
+}
+
+}  // namespace
+
+models::Config load_run_config(const std::string& path, const std::vector<std::string>& sets) {
+  std::vector<models::Override> overrides;
+  for (const auto& s : sets) overrides.push_back(models::parse_override(s));
+  return models::load_config(path, overrides);
+}
+
+GaitRunReport run_gait_job(const GaitRunJob& job) {
+  namespace fs = std::filesystem;
+  const models::Config& config = job.config;
+  const fs::path& out = job.out;
+  models::BuiltModel built = models::build_model(config);
+  const engine::Model& model = built.model;
+  if (job.on_built) job.on_built(built);
+  clear_outputs(out);
+  fs::create_directories(out);
+
+  engine::State state = engine::make_initial_state(model);
+  engine::Data data = engine::make_data(model);
+  engine::RunOptions options;
+  options.cycles = config.cycles;
+  options.map_pcts = config.map_pcts;
+  std::sort(options.map_pcts.begin(), options.map_pcts.end());
+  io::ProgressBar bar("simulating");
+  if (!job.quiet) options.progress = [&bar](double f) { bar.update(f); };
+  const auto t0 = std::chrono::steady_clock::now();
+  const engine::RunResult result = engine::simulate(model, state, data, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  bar.finish();
+
+  const io::Table table = make_kinematics_table(result.frames);
+  nlohmann::json summary = describe_model(built, config);
+  summary["cycles"] = config.cycles;
+  summary["seconds"] = seconds;
+  summary["seconds_per_cycle"] = seconds / config.cycles;
+  summary["max_stability_ratio"] = result.max_stability_ratio;
+  summary["element_evaluations_per_step"] =
+      static_cast<double>(result.evaluations) / std::max(1L, result.steps);
+  if (result.status != engine::StepStatus::kOk) {
+    // keep what was complete, under names that cannot be mistaken for a finished run
+    io::write_csv(out / "kinematics.partial.csv", table);
+    summary["status"] = "failed";
+    summary["failure"] = engine::to_string(result.status);
+    summary["failed_at_s"] = result.failed_at;
+    io::write_json(out / "summary.failed.json", summary);
+    throw std::runtime_error(std::string("the simulation stopped at t = ") +
+                             std::to_string(result.failed_at) + " s: " +
+                             engine::to_string(result.status) + "; the frames completed so far "
+                             "are in " + (out / "kinematics.partial.csv").string());
+  }
+  for (size_t i = 0; i < result.maps.size(); ++i) {
+    char name[64];
+    std::snprintf(name, sizeof name, "pressure_%03.0fpct.vtp", options.map_pcts[i]);
+    write_pressure_map(out / name, model.insert, result.maps[i]);
+  }
+  GaitRunReport report;
+  report.figures = calc_cycle_figures(result.frames);
+  report.seconds = seconds;
+  summary.update(describe_figures(report.figures));
+  summary["status"] = "complete";
+  io::write_csv(out / "kinematics.csv", table);
+  std::vector<std::string> plot_args = {(out / "kinematics.csv").string(),
+                                        (out / "kinematics.png").string()};
+  if (!config.measured_kinematics.empty()) {
+    // the measured pose is reported about the same femoral reference point as the simulation
+    const Eigen::Vector3d p_FR_F = Eigen::Vector3d(config.femur_origin_mm[0],
+                                                   config.femur_origin_mm[1],
+                                                   config.femur_origin_mm[2]) * 1e-3;
+    const loads::MeasuredKinematics measured = loads::read_kinematics(
+        models::resolve_path(config, config.measured_kinematics),
+        config.implant_kind == "mesh" ? p_FR_F : Eigen::Vector3d::Zero());
+    io::write_csv(out / "measured_kinematics.csv", make_measured_table(measured));
+    plot_args.push_back("--measured");
+    plot_args.push_back((out / "measured_kinematics.csv").string());
+  }
+  io::run_plot("kinematics.py", plot_args);
+  io::write_json(out / "summary.json", summary);  // last: its presence marks a complete run
+  report.summary = std::move(summary);
+  return report;
+}
+
+}  // namespace kneesim::run

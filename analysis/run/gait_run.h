@@ -1,0 +1,41 @@
+// One rig run as a library call: a Config (file + overrides already applied) -> Model -> the
+// gait cycles -> kinematics.csv, summary.json, pressure maps and the kinematics plot in `out`.
+// `kneesim run` is a thin shell over run_gait_job; the studies use the same Model and figures.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "analysis/run/run_outputs.h"
+#include "models/build_model.h"
+#include "models/config.h"
+
+namespace kneesim::run {
+
+// the config file with its --set overrides ("key=value", TOML value syntax) applied;
+// InputError names the file or the override
+models::Config load_run_config(const std::string& path, const std::vector<std::string>& sets);
+
+struct GaitRunJob {
+  models::Config config;        // cycles, map_pcts and measured_kinematics are read from it
+  std::filesystem::path out;    // output folder
+  bool quiet = false;           // no progress bar
+  // called once the Model is built, before any step (e.g. to describe it on the terminal)
+  std::function<void(const models::BuiltModel&)> on_built;
+};
+
+struct GaitRunReport {
+  nlohmann::json summary;   // as written to out/summary.json
+  CycleFigures figures;     // of the last cycle
+  double seconds = 0.0;     // simulation wall time [s]
+};
+
+// runs the job and writes its outputs (summary.json last: its presence marks a complete run);
+// on numerical trouble writes kinematics.partial.csv and summary.failed.json and throws
+// std::runtime_error with one sentence
+GaitRunReport run_gait_job(const GaitRunJob& job);
+
+}  // namespace kneesim::run

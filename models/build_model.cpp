@@ -11,8 +11,7 @@
 #include "engine/fcl_adapter.h"
 #include "engine/kinematics.h"
 #include "engine/step.h"
-#include "loads/iso14243/conventions.h"
-#include "loads/iso14243/kinematics.h"
+#include "models/gait_assembly.h"
 #include "models/mesh_io.h"
 
 namespace kneesim::models {
@@ -96,48 +95,6 @@ Implant make_implant(const Config& c, double& base_y) {
   return imp;
 }
 
-// gait waveform with the sign conventions applied; in displacement mode with a measured
-// kinematics file, the measured channels are merged in (sampled every 0.25 %)
-loads::Waveform make_gait(const Config& c) {
-  loads::Waveform gait = loads::Waveform::load(resolve_path(c, c.gait_file));
-  loads::WaveformConventions conv;
-  conv.ap_sign = c.ap_sign;
-  conv.ie_sign = c.ie_sign;
-  gait = loads::apply_conventions(gait, conv);
-  if (c.kinematics_file.empty()) return gait;
-  // the measured pose about the femoral reference point the engine uses (the FE axis centre)
-  const Eigen::Vector3d p_FR_F =
-      c.implant_kind == "mesh"
-          ? Eigen::Vector3d(Eigen::Vector3d(c.femur_origin_mm[0], c.femur_origin_mm[1], c.femur_origin_mm[2]) * kMm)
-          : Eigen::Vector3d::Zero();
-  const loads::Waveform measured =
-      loads::to_waveform(loads::read_kinematics(resolve_path(c, c.kinematics_file), p_FR_F));
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> columns;
-  std::vector<double> pct;
-  for (int i = 0; i <= 400; ++i) pct.push_back(0.25 * i);
-  pct.back() = 100.0;
-  auto add = [&](const loads::Waveform& w, int ch) {
-    names.push_back(w.channel_name(ch));
-    std::vector<double> col;
-    for (double p : pct) col.push_back(w.value(ch, p));
-    columns.push_back(col);
-  };
-  for (int ch = 0; ch < measured.channel_count(); ++ch) {
-    add(measured, ch);
-    // a measured cycle rarely closes: remove the linear drift between 0 and 100 % so that a
-    // prescribed DOF does not jump at the cycle boundary (a jump is an infinite velocity)
-    std::vector<double>& col = columns.back();
-    const double drift = col.back() - col.front();
-    for (size_t i = 0; i < col.size(); ++i) col[i] -= drift * pct[i] / 100.0;
-  }
-  for (int ch = 0; ch < gait.channel_count(); ++ch) {
-    if (measured.channel(gait.channel_name(ch)) < 0) add(gait, ch);
-  }
-  return loads::Waveform::from_table(names, pct, columns,
-                                     gait.source() + " + " + measured.source());
-}
-
 engine::DofMode parse_mode(const std::string& s) {
   if (s == "free") return engine::DofMode::kFree;
   if (s == "prescribed") return engine::DofMode::kPrescribed;
@@ -164,6 +121,7 @@ void map_channel(const Config& c, const loads::Waveform& gait, int carriage, int
       {1, 4, DofMode::kPrescribed, "ie_deg", kDeg},
       {1, 2, DofMode::kPrescribed, "ml_mm", kMm},
       {1, 3, DofMode::kPrescribed, "vv_deg", kDeg},
+      {1, 3, DofMode::kForce, "vv_torque_Nm", 1.0},
   };
   for (const Map& mp : maps) {
     if (mp.carriage != carriage || mp.dof != dof || mp.mode != m.mode) continue;
@@ -337,6 +295,11 @@ BuiltModel build_model(const Config& c) {
   // gait and rig
   m.gait = make_gait(c);
   m.period = c.period_s;
+  if (!c.measured_file.empty()) {
+    // a measured cycle in seconds sets the period
+    const loads::MeasuredLoads measured = loads::read_measured_loads(measured_load_spec(c));
+    if (!measured.percent) m.period = measured.window_end - measured.window_start;
+  }
   m.threads = c.threads;
   m.integrator = c.integrator == "cvode" ? engine::IntegratorKind::kCvode
                                          : engine::IntegratorKind::kCentralDifference;
@@ -354,6 +317,29 @@ BuiltModel build_model(const Config& c) {
     for (int i = 0; i < engine::kNumDof; ++i) {
       engine::DofModel& d = cm.dofs[i];
       d.mode = parse_mode(modes[i]);
+      if (carriage == 1 && i == 3 && m.gait.channel("vv_torque_Nm") >= 0 &&
+          (c.vv_torque_axial_arm_mm != 0.0 || c.vv_torque_stance_Nm != 0.0)) {
+        // the VV torque drives a free tibial VV (the rig's free DOF plus a torque)
+        if (d.mode == engine::DofMode::kFree) d.mode = engine::DofMode::kForce;
+        if (d.mode != engine::DofMode::kForce) {
+          throw InputError(config_name(c) + ": gait.vv_torque_axial_arm_mm / "
+                           "vv_torque_stance_Nm need a free tibial VV (rig.tibia.vv = \"" +
+                           modes[i] + "\"; allowed: \"free\" or \"force\")");
+        }
+      }
+      if (carriage == 0 && i == 3 && c.femur_vv_deg != 0.0) {
+        if (d.mode != engine::DofMode::kLocked) {
+          throw InputError(config_name(c) + ": rig.femur_vv_deg = " +
+                           std::to_string(c.femur_vv_deg) + " needs a locked femoral VV "
+                           "(rig.femur.vv = \"" + modes[i] + "\"; allowed: \"locked\")");
+        }
+        d.initial = c.femur_vv_deg * kDeg;
+      }
+      if (carriage == 1 && i == 3 && c.femur_vv_deg != 0.0 &&
+          (d.mode == engine::DofMode::kFree || d.mode == engine::DofMode::kForce)) {
+        // a free tibial VV starts aligned with the femur (both condyles in contact at t = 0)
+        d.initial = c.femur_vv_deg * kDeg;
+      }
       d.mass = engine::is_rotation(i) ? inertia : mass;
       d.damping = damping[i];
       map_channel(c, m.gait, carriage, i, d);

@@ -117,6 +117,14 @@ class Registry {
                     },
                     allowed};
   }
+  void strings(const std::string& key, std::vector<std::string>& target) {
+    fields_[key] = {[&target, key](const Value& v, const std::string& where) {
+                      const auto* l = io::as_string_list(v);
+                      if (!l) fail_value(where, key, v, "a list of strings");
+                      target = *l;
+                    },
+                    "a list of strings"};
+  }
   const Field* find(const std::string& key) const {
     auto it = fields_.find(key);
     return it == fields_.end() ? nullptr : &it->second;
@@ -191,6 +199,7 @@ Registry make_registry(Config& c) {
   }
   r.number("rig.axial_offset_mm", c.axial_offset_mm, -30, 30);
   r.number("rig.tibia_pivot_medial_mm", c.tibia_pivot_medial_mm, -30, 30);
+  r.number("rig.femur_vv_deg", c.femur_vv_deg, -15, 15);
   r.number("rig.femur_mass_kg", c.femur_mass_kg, 0.01, 1000);
   r.number("rig.tibia_mass_kg", c.tibia_mass_kg, 0.01, 1000);
   r.number("rig.femur_inertia_kgm2", c.femur_inertia_kgm2, 1e-6, 100);
@@ -218,6 +227,18 @@ Registry make_registry(Config& c) {
   r.number("gait.axial_force_scale", c.axial_force_scale, 0, 10);
   r.number("gait.ap_force_scale", c.ap_force_scale, 0, 10);
   r.number("gait.ie_torque_scale", c.ie_torque_scale, 0, 10);
+  r.number("gait.vv_torque_axial_arm_mm", c.vv_torque_axial_arm_mm, -50, 50);
+  r.number("gait.vv_torque_stance_Nm", c.vv_torque_stance_Nm, -200, 200);
+  r.text("gait.measured.file", c.measured_file);
+  r.text("gait.measured.time_column", c.measured_time_column);
+  r.choice("gait.measured.time_unit", c.measured_time_unit, {"", "s", "ms", "pct"});
+  r.list("gait.measured.window", c.measured_window, -1e6, 1e6);
+  r.text("gait.measured.force_unit", c.measured_force_unit);
+  r.text("gait.measured.moment_unit", c.measured_moment_unit);
+  r.text("gait.measured.angle_unit", c.measured_angle_unit);
+  r.text("gait.measured.length_unit", c.measured_length_unit);
+  r.strings("gait.measured.channels", c.measured_channels);
+  r.strings("gait.measured.compare", c.measured_compare);
 
   r.choice("solver.integrator", c.integrator, {"central_difference", "cvode"});
   r.number("solver.dt_safety", c.dt_safety, 0.05, 1.0);

@@ -69,6 +69,8 @@ struct Config {
   std::array<std::string, 6> tibia_dofs;
   double axial_offset_mm = 5.0;            // medial offset of the axial load line [mm]
   double tibia_pivot_medial_mm = 5.0;      // medial offset of the tibial VV (and IE) axis [mm]
+  double femur_vv_deg = 0.0;               // VV alignment of the femoral component (locked
+                                           // femoral VV), + varus [deg]
   double femur_mass_kg = 8.0, tibia_mass_kg = 2.0;
   double femur_inertia_kgm2 = 0.01, tibia_inertia_kgm2 = 0.01;  // rotational [kg m^2]
   double ap_damping_Ns_per_m = 100.0, ml_damping_Ns_per_m = 100.0, is_damping_Ns_per_m = 0.0;
@@ -88,6 +90,21 @@ struct Config {
   double period_s = 1.0;
   double ap_sign = 1.0, ie_sign = 1.0;     // sign conventions of the file's AP and IE channels
   double axial_force_scale = 1.0, ap_force_scale = 1.0, ie_torque_scale = 1.0;
+  // varus-valgus torque on the tibial carriage (+ varus, loads the medial condyle), added to a
+  // free tibial VV DOF (which becomes force-driven): arm x axial force (the axial load line
+  // moved medially by the arm) plus amplitude x a stance-phase shape (build_model.h)
+  double vv_torque_axial_arm_mm = 0.0;     // [mm]
+  double vv_torque_stance_Nm = 0.0;        // [N m]
+
+  // [gait.measured]: a measured load table drives rig channels (loads/iso14243/measured_loads.h)
+  std::string measured_file;               // table (CSV); "" = none
+  std::string measured_time_column;        // "" = first column
+  std::string measured_time_unit;          // "" = from the header; "s", "ms", "pct"
+  std::vector<double> measured_window;     // one gait cycle [start, end] in time-column units
+  std::string measured_force_unit, measured_moment_unit;  // units of bare headers
+  std::string measured_angle_unit, measured_length_unit;
+  std::vector<std::string> measured_channels;  // "target = expression": rig channels
+  std::vector<std::string> measured_compare;   // measured outputs for comparison (diagnose)
 
   // [solver]
   std::string integrator = "central_difference";  // "central_difference" | "cvode"

@@ -117,6 +117,8 @@ TextTable read_text_table(const std::filesystem::path& file, TextFormat format) 
       t.header = std::move(cells);
       continue;
     }
+    // a trailing delimiter on data rows (spreadsheet exports) is an empty last cell, not data
+    if (cells.size() == t.header.size() + 1 && cells.back().empty()) cells.pop_back();
     if (cells.size() != t.header.size()) {
       throw InputError(display_path(file) + ": line " + std::to_string(line_no) + " has " +
                        std::to_string(cells.size()) + " cells but the header has " +

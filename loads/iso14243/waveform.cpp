@@ -136,6 +136,18 @@ Waveform Waveform::from_keypoints(const std::vector<KeyPoints>& channels,
   return w;
 }
 
+void Waveform::merge(const Waveform& other) {
+  for (const Channel& c : other.channels_) {
+    const int i = channel(c.name);
+    if (i >= 0) {
+      channels_[static_cast<std::size_t>(i)] = c;
+    } else {
+      channels_.push_back(c);
+    }
+  }
+  source_ += " + " + other.source_;
+}
+
 void Waveform::add_channel(const std::string& name, Interpolation interp,
                            const std::vector<double>& t, const std::vector<double>& v) {
   if (channel(name) >= 0) {

@@ -67,6 +67,10 @@ class Waveform {
   // multiplies a channel by a factor (sign conventions, unit changes)
   void scale_channel(int channel, double factor);
 
+  // every channel of `other` (points and interpolation as they are) replaces the channel of
+  // the same name in place, keeping channel indices, or is appended
+  void merge(const Waveform& other);
+
  private:
   struct Channel {
     std::string name;       // with unit suffix

@@ -17,7 +17,8 @@ struct ContactSummary {
   Eigen::Vector3d force_W = Eigen::Vector3d::Zero();   // total force on the femur [N]
   std::array<double, 2> normal_force{};  // sum of normal forces per condyle [N]
   std::array<double, 2> area{};          // area of elements with p > 0 per condyle [m^2]
-  std::array<Eigen::Vector3d, 2> cop_T{};  // pressure-weighted centre per condyle [m], T frame
+  std::array<Eigen::Vector3d, 2> cop_T{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+                                         // pressure-weighted centre per condyle [m], T frame
   double peak_pressure = 0.0;            // [Pa]
   double mean_pressure = 0.0;            // total normal force / total area [Pa]
   double max_penetration = 0.0;          // [m]

@@ -18,15 +18,29 @@ namespace kneesim::engine {
 
 double SignedDistanceField::sample(const Eigen::Vector3d& p_F, Eigen::Vector3d* gradient) const {
   const Eigen::Vector3d g = (p_F - origin) / spacing;
-  const double fx = std::floor(g.x()), fy = std::floor(g.y()), fz = std::floor(g.z());
-  const int i = static_cast<int>(fx), j = static_cast<int>(fy), k = static_cast<int>(fz);
-  if (i < 0 || j < 0 || k < 0 || i >= dims.x() - 1 || j >= dims.y() - 1 || k >= dims.z() - 1) {
+  // outside the grid's cells (or NaN); inside, truncation is the floor (std::floor is a libm
+  // call on the baseline x86-64 target, which has no roundsd)
+  if (!(g.x() >= 0.0 && g.y() >= 0.0 && g.z() >= 0.0 && g.x() < dims.x() - 1 &&
+        g.y() < dims.y() - 1 && g.z() < dims.z() - 1)) {
     if (gradient) gradient->setZero();
     return band;
   }
+  const int i = static_cast<int>(g.x()), j = static_cast<int>(g.y()), k = static_cast<int>(g.z());
+  const double fx = i, fy = j, fz = k;
+  // the cell's brick, and the cell's corner (0,0,0) inside it
+  const int bi = i / kBrickCells, bj = j / kBrickCells, bk = k / kBrickCells;
+  const Storage& st = *storage;
+  const int32_t brick = st.brick_of[bi + bricks.x() * (bj + bricks.y() * bk)];
+  if (brick < 0) {
+    // every corner holds the clamp value: the interpolation would return it exactly
+    if (gradient) gradient->setZero();
+    return static_cast<float>(brick == kBrickOutside ? band : -band);
+  }
   const double tx = g.x() - fx, ty = g.y() - fy, tz = g.z() - fz;
-  const long sx = 1, sy = dims.x(), sz = static_cast<long>(dims.x()) * dims.y();
-  const long base = i + sy * j + sz * k;
+  constexpr long sx = 1, sy = kBrickNodes, sz = kBrickNodes * kBrickNodes;
+  const float* phi = st.values.data() + static_cast<long>(brick) * kBrickSize;
+  const long base = (i - kBrickCells * bi) + sy * (j - kBrickCells * bj) +
+                    sz * (k - kBrickCells * bk);
   const double c000 = phi[base], c100 = phi[base + sx];
   const double c010 = phi[base + sy], c110 = phi[base + sx + sy];
   const double c001 = phi[base + sz], c101 = phi[base + sx + sz];
@@ -43,6 +57,26 @@ double SignedDistanceField::sample(const Eigen::Vector3d& p_F, Eigen::Vector3d* 
                 spacing;
   }
   return c0 + tz * (c1 - c0);
+}
+
+int SignedDistanceField::stored_bricks() const {
+  return storage ? static_cast<int>(storage->values.size() / kBrickSize) : 0;
+}
+
+size_t SignedDistanceField::bytes() const {
+  return storage ? storage->values.size() * sizeof(float) +
+                       storage->brick_of.size() * sizeof(int32_t)
+                 : 0;
+}
+
+float SignedDistanceField::node(int i, int j, int k) const {
+  const int bi = std::min(i / kBrickCells, bricks.x() - 1);
+  const int bj = std::min(j / kBrickCells, bricks.y() - 1);
+  const int bk = std::min(k / kBrickCells, bricks.z() - 1);
+  const int32_t brick = storage->brick_of[bi + bricks.x() * (bj + bricks.y() * bk)];
+  if (brick < 0) return static_cast<float>(brick == kBrickOutside ? band : -band);
+  return storage->values[static_cast<long>(brick) * kBrickSize + (i - kBrickCells * bi) +
+                kBrickNodes * ((j - kBrickCells * bj) + kBrickNodes * (k - kBrickCells * bk))];
 }
 
 namespace {
@@ -96,6 +130,45 @@ double find_sign(const Pseudonormals& n, unsigned int support, const Eigen::Vect
     if (auto it = n.edge.find({key.first, key.second}); it != n.edge.end()) normal = it->second;
   }
   return (p - q).dot(normal) >= 0.0 ? 1.0 : -1.0;
+}
+
+// cuts a dense x-fastest node grid into bricks of 8^3 nodes sharing their boundary nodes;
+// bricks whose nodes all hold the same clamp value are not stored (nodes past the grid's last
+// node hold +band and are never interpolated)
+void make_bricks(const std::vector<float>& phi, SignedDistanceField& sdf) {
+  const long nx = sdf.dims.x(), ny = sdf.dims.y(), nz = sdf.dims.z();
+  for (int a = 0; a < 3; ++a) {
+    sdf.bricks[a] = std::max(1, (sdf.dims[a] - 1 + kBrickCells - 1) / kBrickCells);
+  }
+  const float outside = static_cast<float>(sdf.band), inside = static_cast<float>(-sdf.band);
+  auto storage = std::make_shared<SignedDistanceField::Storage>();
+  storage->brick_of.assign(static_cast<size_t>(sdf.bricks.prod()), kBrickOutside);
+  std::vector<float> brick(kBrickSize);
+  for (int bk = 0; bk < sdf.bricks.z(); ++bk)
+    for (int bj = 0; bj < sdf.bricks.y(); ++bj)
+      for (int bi = 0; bi < sdf.bricks.x(); ++bi) {
+        bool all_outside = true, all_inside = true;
+        for (int k = 0; k < kBrickNodes; ++k)
+          for (int j = 0; j < kBrickNodes; ++j)
+            for (int i = 0; i < kBrickNodes; ++i) {
+              const long gi = kBrickCells * bi + i, gj = kBrickCells * bj + j,
+                         gk = kBrickCells * bk + k;
+              const float v = gi < nx && gj < ny && gk < nz ? phi[gi + nx * (gj + ny * gk)]
+                                                            : outside;
+              brick[i + kBrickNodes * (j + kBrickNodes * k)] = v;
+              all_outside &= v == outside;
+              all_inside &= v == inside;
+            }
+        int32_t& entry = storage->brick_of[bi + sdf.bricks.x() * (bj + sdf.bricks.y() * bk)];
+        if (all_outside) continue;
+        if (all_inside) {
+          entry = kBrickInside;
+          continue;
+        }
+        entry = static_cast<int32_t>(storage->values.size() / kBrickSize);
+        storage->values.insert(storage->values.end(), brick.begin(), brick.end());
+      }
+  sdf.storage = std::move(storage);
 }
 
 }  // namespace
@@ -180,7 +253,7 @@ SignedDistanceField make_signed_distance_field(const std::vector<Eigen::Vector3d
   }
   // signs from the pseudonormal of the nearest feature; nodes beyond the band wait for the fill
   const Pseudonormals normals = make_pseudonormals(vertices, triangles);
-  sdf.phi.assign(total, static_cast<float>(band));
+  std::vector<float> phi(total, static_cast<float>(band));
   std::vector<uint8_t> in_band(total, 0);
   const float band2 = static_cast<float>(band * band);
 #pragma omp parallel for schedule(static)
@@ -195,7 +268,7 @@ SignedDistanceField make_signed_distance_field(const std::vector<Eigen::Vector3d
     const Eigen::Vector3d q = proj.weight[0] * vertices[t[0]] + proj.weight[1] * vertices[t[1]] +
                               proj.weight[2] * vertices[t[2]];
     const double s = find_sign(normals, proj.support, t, nearest[n], p, q);
-    sdf.phi[n] = static_cast<float>(s * std::sqrt(static_cast<double>(best[n])));
+    phi[n] = static_cast<float>(s * std::sqrt(static_cast<double>(best[n])));
   }
 
   // flood fill the non-band nodes from the grid boundary: reached = outside, rest = inside
@@ -227,7 +300,8 @@ SignedDistanceField make_signed_distance_field(const std::vector<Eigen::Vector3d
     }
   }
   for (long n = 0; n < total; ++n)
-    if (!in_band[n] && !outside[n]) sdf.phi[n] = static_cast<float>(-band);
+    if (!in_band[n] && !outside[n]) phi[n] = static_cast<float>(-band);
+  make_bricks(phi, sdf);
   return sdf;
 }
 

@@ -11,6 +11,7 @@
 #include "engine/fcl_adapter.h"
 #include "engine/kinematics.h"
 #include "engine/step.h"
+#include "models/distance_field_cache.h"
 #include "models/gait_assembly.h"
 #include "models/mesh_io.h"
 
@@ -279,12 +280,12 @@ BuiltModel build_model(const Config& c) {
                      "; allowed: below the largest face normal y)");
   }
 
-  // femoral distance field, built once
+  // femoral distance fields, built once per femoral mesh and field parameters in a process
   const auto sdf_start = std::chrono::steady_clock::now();
-  m.femur_sdf = engine::make_signed_distance_field(out.implant.femur.vertices,
-                                                   out.implant.femur.triangles,
-                                                   c.sdf_spacing_mm * kMm, c.sdf_band_mm * kMm);
-  m.femur_far_sdf = engine::make_signed_distance_field(
+  m.femur_sdf = find_or_make_distance_field(out.implant.femur.vertices,
+                                            out.implant.femur.triangles,
+                                            c.sdf_spacing_mm * kMm, c.sdf_band_mm * kMm);
+  m.femur_far_sdf = find_or_make_distance_field(
       out.implant.femur.vertices, out.implant.femur.triangles, kFarSpacing, kFarBand);
   for (const auto& v : out.implant.femur.vertices) {
     m.femur_radius = std::max(m.femur_radius, v.norm());

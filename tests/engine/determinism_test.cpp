@@ -76,7 +76,9 @@ TEST_CASE("distance field is bit-identical for 1 and 2 OpenMP threads") {
   const engine::SignedDistanceField b =
       engine::make_signed_distance_field(femur.vertices, femur.triangles, 0.5e-3, 1.5e-3);
   omp_set_num_threads(saved);
-  REQUIRE(a.phi.size() == b.phi.size());
+  REQUIRE(a.storage->values.size() == b.storage->values.size());
   CHECK(a.dims == b.dims);
-  CHECK(std::memcmp(a.phi.data(), b.phi.data(), a.phi.size() * sizeof(float)) == 0);
+  CHECK(a.storage->brick_of == b.storage->brick_of);
+  CHECK(std::memcmp(a.storage->values.data(), b.storage->values.data(),
+                    a.storage->values.size() * sizeof(float)) == 0);
 }

@@ -1,11 +1,16 @@
 // Engine benchmark (not part of ctest): time per gait cycle at three insert resolutions,
 // nanoseconds per contact-element evaluation, and the CPU-time ratio of the explicit
 // central-difference integrator to the SUNDIALS CVODE reference on the same model, with the
-// RMS difference of their AP and IE traces. Every figure is the median of --repeats runs on one
-// thread; run it on a quiet machine in a Release build:
+// RMS difference of their AP and IE traces. Then the figures of docs/performance.md: the
+// distance field's build time and memory, dense (the layout before issue 13) against bricked
+// sampling of the same points of a gait cycle in the same run (a ratio that survives a busy
+// machine), and hardware counters per evaluation where the CPU exposes them (a VM often does
+// not: docs/performance.md has the callgrind counts). Every figure is the median of --repeats
+// runs on one thread; run it on a quiet machine in a Release build:
 //
 //   build/tools/bench_engine [--repeats 5] [--cycles 1]
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -13,6 +18,11 @@
 #include <numbers>
 #include <string>
 #include <vector>
+
+#include <linux/perf_event.h>
+#include <sys/ioctl.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include "engine/simulate.h"
 #include "models/build_model.h"
@@ -71,6 +81,107 @@ Timing time_cycles(const engine::Model& model, int cycles, int repeats) {
   return t;
 }
 
+// the dense x-fastest layout of the field before issue 13, rebuilt node by node from the
+// bricked field, with the sampling code of that time: the "before" of the layout table
+struct DenseField {
+  Eigen::Vector3d origin;
+  double spacing = 0, band = 0;
+  Eigen::Vector3i dims;
+  std::vector<float> phi;
+  explicit DenseField(const engine::SignedDistanceField& f)
+      : origin(f.origin), spacing(f.spacing), band(f.band), dims(f.dims) {
+    phi.resize(static_cast<size_t>(dims.x()) * dims.y() * dims.z());
+    size_t n = 0;
+    for (int k = 0; k < dims.z(); ++k)
+      for (int j = 0; j < dims.y(); ++j)
+        for (int i = 0; i < dims.x(); ++i) phi[n++] = f.node(i, j, k);
+  }
+  double sample(const Eigen::Vector3d& p_F) const {
+    const Eigen::Vector3d g = (p_F - origin) / spacing;
+    const double fx = std::floor(g.x()), fy = std::floor(g.y()), fz = std::floor(g.z());
+    const int i = static_cast<int>(fx), j = static_cast<int>(fy), k = static_cast<int>(fz);
+    if (i < 0 || j < 0 || k < 0 || i >= dims.x() - 1 || j >= dims.y() - 1 || k >= dims.z() - 1)
+      return band;
+    const double tx = g.x() - fx, ty = g.y() - fy, tz = g.z() - fz;
+    const long sx = 1, sy = dims.x(), sz = static_cast<long>(dims.x()) * dims.y();
+    const long base = i + sy * j + sz * k;
+    const double c000 = phi[base], c100 = phi[base + sx];
+    const double c010 = phi[base + sy], c110 = phi[base + sx + sy];
+    const double c001 = phi[base + sz], c101 = phi[base + sx + sz];
+    const double c011 = phi[base + sy + sz], c111 = phi[base + sx + sy + sz];
+    const double c00 = c000 + tx * (c100 - c000), c10 = c010 + tx * (c110 - c010);
+    const double c01 = c001 + tx * (c101 - c001), c11 = c011 + tx * (c111 - c011);
+    const double c0 = c00 + ty * (c10 - c00), c1 = c01 + ty * (c11 - c01);
+    return c0 + tz * (c1 - c0);
+  }
+};
+
+// the points (F frame) at which a gait cycle samples the fine field, in evaluation order
+std::vector<Eigen::Vector3d> record_sample_points(const engine::Model& model) {
+  std::vector<Eigen::Vector3d> points;
+  engine::State state = engine::make_initial_state(model);
+  engine::Data data = engine::make_data(model);
+  engine::RunOptions o;
+  o.cycles = 1;
+  o.observer = [&](const engine::Model& m, const engine::State&, const engine::Data& d) {
+    const Eigen::Isometry3d X_FT = d.X_WF.inverse() * d.X_WT;
+    for (int e : d.due) points.push_back(X_FT * m.insert.centroid_T[e]);
+  };
+  engine::simulate(model, state, data, o);
+  return points;
+}
+
+template <class Field>
+double ns_per_sample(const Field& field, const std::vector<Eigen::Vector3d>& points,
+                     double& checksum) {
+  const double c0 = cpu_seconds();
+  double sum = 0;
+  for (const auto& p : points) sum += field.sample(p);
+  const double c1 = cpu_seconds();
+  checksum = sum;
+  return 1e9 * (c1 - c0) / std::max<size_t>(1, points.size());
+}
+
+// hardware counters of this thread (instructions, cycles, cache misses); absent in many VMs
+struct Counters {
+  int fd[3] = {-1, -1, -1};
+  Counters() {
+    const unsigned long configs[3] = {PERF_COUNT_HW_INSTRUCTIONS, PERF_COUNT_HW_CPU_CYCLES,
+                                      PERF_COUNT_HW_CACHE_MISSES};
+    for (int i = 0; i < 3; ++i) {
+      perf_event_attr a{};
+      a.size = sizeof a;
+      a.type = PERF_TYPE_HARDWARE;
+      a.config = configs[i];
+      a.disabled = 1;
+      a.exclude_kernel = 1;
+      a.exclude_hv = 1;
+      fd[i] = static_cast<int>(syscall(SYS_perf_event_open, &a, 0, -1, -1, 0));
+    }
+  }
+  ~Counters() {
+    for (int f : fd)
+      if (f >= 0) close(f);
+  }
+  bool available() const { return fd[0] >= 0 && fd[1] >= 0; }
+  void start() {
+    for (int f : fd)
+      if (f >= 0) {
+        ioctl(f, PERF_EVENT_IOC_RESET, 0);
+        ioctl(f, PERF_EVENT_IOC_ENABLE, 0);
+      }
+  }
+  std::array<long long, 3> stop() {
+    std::array<long long, 3> v{-1, -1, -1};
+    for (int i = 0; i < 3; ++i)
+      if (fd[i] >= 0) {
+        ioctl(fd[i], PERF_EVENT_IOC_DISABLE, 0);
+        if (read(fd[i], &v[i], sizeof v[i]) != sizeof v[i]) v[i] = -1;
+      }
+    return v;
+  }
+};
+
 models::BuiltModel build(double edge_mm, const std::string& integrator) {
   std::vector<models::Override> o = {{"implant.edge_length_mm", std::to_string(edge_mm)},
                                      {"solver.integrator", "\"" + integrator + "\""}};
@@ -117,5 +228,62 @@ int main(int argc, char** argv) {
               te.seconds_per_cycle / tc.seconds_per_cycle);
   std::printf("| SUNDIALS CVODE (BDF) | %.3f | | %.3f | %.3f |\n", tc.seconds_per_cycle,
               n ? std::sqrt(ap2 / n) : 0.0, n ? std::sqrt(ie2 / n) : 0.0);
+  std::fflush(stdout);
+
+  // the distance field of the default model (1 mm edge): build time and memory
+  const models::BuiltModel def = build(1.0, "central_difference");
+  const engine::SignedDistanceField& field = def.model.femur_sdf;
+  std::vector<double> build_s;
+  for (int r = 0; r < std::max(1, repeats / 2); ++r) {
+    const double c0 = cpu_seconds();
+    const engine::SignedDistanceField f = engine::make_signed_distance_field(
+        def.implant.femur.vertices, def.implant.femur.triangles, field.spacing, field.band);
+    build_s.push_back(cpu_seconds() - c0);
+  }
+  const double nodes = static_cast<double>(field.dims.prod());
+  std::printf("\n| femoral field (edge 1.0 mm) | nodes | dense MB | bricks stored / all | "
+              "bricked MB | build s (CPU, 1 thread) |\n|---|---|---|---|---|---|\n");
+  std::printf("| spacing %.2f mm, band %.2f mm | %.0f | %.1f | %d / %d | %.1f | %.3f |\n",
+              1e3 * field.spacing, 1e3 * field.band, nodes, 4e-6 * nodes, field.stored_bricks(),
+              field.bricks.prod(), 1e-6 * field.bytes(), median(build_s));
+  std::fflush(stdout);
+
+  // before/after: the same points of a gait cycle sampled in the dense layout and the bricked
+  const std::vector<Eigen::Vector3d> points = record_sample_points(def.model);
+  const DenseField dense(field);
+  std::vector<double> t_dense, t_brick;
+  double sum_dense = 0, sum_brick = 0;
+  for (int r = 0; r < repeats; ++r) {
+    t_dense.push_back(ns_per_sample(dense, points, sum_dense));
+    t_brick.push_back(ns_per_sample(field, points, sum_brick));
+  }
+  std::printf("\n| field layout, %zu samples of a gait cycle | ns/sample | ratio to dense | "
+              "sum of samples (m) |\n|---|---|---|---|\n", points.size());
+  std::printf("| dense x-fastest (before) | %.1f | 1 | %.9e |\n", median(t_dense), sum_dense);
+  std::printf("| bricked 8^3 (after) | %.1f | %.2f | %.9e |\n", median(t_brick),
+              median(t_brick) / median(t_dense), sum_brick);
+  std::fflush(stdout);
+
+  // hardware counters per evaluation over one cycle of the default model
+  Counters counters;
+  std::printf("\n| counters per evaluation (edge 1.0 mm, 1 cycle) | instructions | cycles | "
+              "cache misses |\n|---|---|---|---|\n");
+  if (!counters.available()) {
+    std::printf("| not available: this CPU or VM exposes no hardware counters "
+                "(docs/performance.md: callgrind) | | | |\n");
+    return 0;
+  }
+  engine::State state = engine::make_initial_state(def.model);
+  engine::Data data = engine::make_data(def.model);
+  engine::RunOptions o;
+  o.cycles = 1;
+  engine::simulate(def.model, state, data, o);
+  const long e0 = data.evaluations;
+  counters.start();
+  engine::simulate(def.model, state, data, o);
+  const auto v = counters.stop();
+  const double evals = static_cast<double>(std::max(1L, data.evaluations - e0));
+  std::printf("| step loop | %.1f | %.1f | %.3f |\n", v[0] / evals, v[1] / evals,
+              v[2] >= 0 ? v[2] / evals : -1.0);
   return 0;
 }

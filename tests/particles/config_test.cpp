@@ -3,6 +3,7 @@
 // contract (one sentence naming file, line, key, value and range) for the bad inputs tried.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <string>
 
 #include "engine/errors.h"
@@ -114,4 +115,37 @@ TEST_CASE("particle config: film hardness and contact iterations") {
   CHECK(bad.find("contact_max_iterations") != std::string::npos);
   const std::string neg = error_of(tmp.write("k.toml", "[harder]\nfilm_hardness_GPa = -1\n"));
   CHECK(neg.find("film_hardness_GPa") != std::string::npos);
+}
+
+TEST_CASE("particle config: a knee pair's contact pressure sizes the cylinder (Hertz)") {
+  // reference: the Hertz line contact (Johnson 1985, eq. 4.45): peak p0 = sqrt(w E* / (pi R))
+  // for a load w per unit length and 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2; the pair sizes
+  // R and the load so that p0 is the given contact pressure (tolerance 1e-12 relative)
+  TempDir tmp;
+  const auto f = tmp.write("k.toml", "pair = \"peek-cocr\"\ncontact_pressure_MPa = 23.6\n");
+  const pt::ParticleModelConfig c = pt::read_particle_config(f);
+  CHECK(c.contact_pressure == doctest::Approx(23.6e6).epsilon(1e-15));
+  CHECK(c.contact_pressure_source.find("k.toml") != std::string::npos);
+  const double e_star =
+      1.0 / ((1.0 - 0.3 * 0.3) / 230e9 + (1.0 - 0.3 * 0.3) / 3500e6);  // CoCr on PEEK
+  const double w = c.load / c.cylinder_length;
+  CHECK(std::sqrt(w * e_star / (3.14159265358979323846 * c.cylinder_radius)) ==
+        doctest::Approx(23.6e6).epsilon(1e-12));
+  // without the key the caller's source is used (kneesim particles: a kneesim contact run)
+  const auto g = tmp.write("g.toml", "pair = \"uhmwpe-cocr\"\n");
+  const pt::ParticleModelConfig d = pt::read_particle_config(
+      g, [](pt::PairName) { return pt::KneeContactPressure{30.6e6, "a contact run"}; });
+  CHECK(d.contact_pressure == 30.6e6);
+  CHECK(d.sources.find("a contact run") != std::string::npos);
+}
+
+TEST_CASE("particle config: contact pressure missing for a knee pair, or given for another") {
+  TempDir tmp;
+  const std::string missing = error_of(tmp.write("m.toml", "pair = \"cfrpeek-cocr\"\n"));
+  CHECK(missing.find("cfrpeek-cocr") != std::string::npos);
+  CHECK(missing.find("contact pressure") != std::string::npos);
+  const std::string other =
+      error_of(tmp.write("o.toml", "pair = \"steel-steel\"\ncontact_pressure_MPa = 20\n"));
+  CHECK(other.find("contact_pressure_MPa") != std::string::npos);
+  CHECK(other.find("steel-steel") != std::string::npos);
 }

@@ -9,12 +9,16 @@
 #include <filesystem>
 #include <string>
 
+#include "analysis/run/run_outputs.h"
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/json_out.h"
 #include "engine/io/plot.h"
 #include "engine/io/progress.h"
 #include "engine/io/table.h"
+#include "engine/simulate.h"
+#include "models/build_model.h"
+#include "models/config.h"
 #include "tools/kneesim/commands.h"
 #include "wear/particles/fft.h"
 #include "wear/particles/particle_model.h"
@@ -29,6 +33,7 @@ struct ParticlesOptions {
   std::string config;
   std::string pair;
   double load_N = -1.0;
+  double contact_pressure_MPa = -1.0;
   std::string out = "particles_out";
   int max_iterations = 0;
   bool no_film = false;
@@ -75,11 +80,56 @@ nlohmann::json body_json(const pt::BodySpec& b) {
           {"surface_csv", b.surface_csv}};
 }
 
+// A knee pair's contact pressure: the mean peak pressure of `kneesim run` with the pair's insert
+// material (built-in implant, default rig and gait, the settled cycle), i.e. of kneesim's rigid
+// insert on its elastic foundation (the deformable insert does not exist yet).
+pt::KneeContactPressure knee_contact_pressure(pt::PairName pair) {
+  const std::string material = pt::knee_pair_material(pair);
+  const models::Config config = models::load_config("", {{"material.name", material}});
+  const models::BuiltModel built = models::build_model(config);
+  engine::State state = engine::make_initial_state(built.model);
+  engine::Data data = engine::make_data(built.model);
+  engine::RunOptions ro;
+  ro.cycles = config.cycles;
+  const engine::RunResult r = engine::simulate(built.model, state, data, ro);
+  if (r.status != engine::StepStatus::kOk || r.frames.empty()) {
+    throw std::runtime_error("the contact run for the " + material + " insert stopped (" +
+                             engine::to_string(r.status) + "); give contact_pressure_MPa");
+  }
+  const double p = run::calc_cycle_figures(r.frames).mean_peak_pressure_MPa;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "kneesim run --set material.name=%s: mean peak pressure %.2f MPa "
+                "(rigid insert, elastic foundation; built-in implant, %s rig)",
+                material.c_str(), p, config.rig_preset.c_str());
+  return {p * 1e6, buf};
+}
+
 void run_particles(const ParticlesOptions& o) {
-  // inputs: config file or pair preset, then the command-line overrides
-  pt::ParticleModelConfig c =
-      o.config.empty() ? pt::make_pair_config(pt::parse_pair(o.pair.empty() ? "steel-steel" : o.pair, "--pair"))
-                       : pt::read_particle_config(o.config);
+  // inputs: config file or pair preset, then the command-line overrides; a knee pair's contact
+  // pressure from --contact-pressure-MPa, the config, or a kneesim contact run
+  const pt::KneeContactPressureFn knee_pressure = [&o](pt::PairName pair) {
+    if (o.contact_pressure_MPa > 0.0) {
+      return pt::KneeContactPressure{o.contact_pressure_MPa * 1e6, "--contact-pressure-MPa"};
+    }
+    return knee_contact_pressure(pair);
+  };
+  pt::ParticleModelConfig c = [&] {
+    if (!o.config.empty()) return pt::read_particle_config(o.config, knee_pressure);
+    const pt::PairName pair = pt::parse_pair(o.pair.empty() ? "steel-steel" : o.pair, "--pair");
+    if (!pt::is_knee_pair(pair)) {
+      if (o.contact_pressure_MPa > 0.0) {
+        throw InputError("--contact-pressure-MPa applies to the knee pairs only, not to " +
+                         std::string(pt::pair_name(pair)));
+      }
+      return pt::make_pair_config(pair);
+    }
+    const pt::KneeContactPressure p = knee_pressure(pair);
+    return pt::make_pair_config(pair, p.pressure, p.source);
+  }();
+  if (!c.contact_pressure_source.empty()) {
+    std::printf("%s: contact pressure %.2f MPa from %s\n", c.pair.c_str(),
+                c.contact_pressure * 1e-6, c.contact_pressure_source.c_str());
+  }
   if (!o.config.empty() && !o.pair.empty()) {
     throw InputError("--pair " + o.pair + " conflicts with the pair of " + o.config +
                      "; give one of them");
@@ -155,6 +205,10 @@ void run_particles(const ParticlesOptions& o) {
   j["load_N"] = c.load;
   j["window_load_N"] = pt::window_load(c);
   j["friction"] = c.friction;
+  if (c.contact_pressure > 0.0) {
+    j["contact_pressure_MPa"] = c.contact_pressure * 1e-6;
+    j["contact_pressure_source"] = c.contact_pressure_source;
+  }
   j["plastic_deformation"] = c.plastic_deformation;
   const pt::PlasticFlowRule flow = pt::make_plastic_flow_rule(c);
   j["plastic_flow"] = {{"pressure_cap_GPa", flow.hardness / 1e9},
@@ -198,6 +252,10 @@ void add_particles_command(CLI::App& app) {
   cmd->add_option("--pair", opts->pair,
                   "steel-steel|steel-brass|uhmwpe-cocr|peek-cocr|cfrpeek-cocr");
   cmd->add_option("--load-N", opts->load_N, "normal load on the cylinder [N]");
+  cmd->add_option("--contact-pressure-MPa", opts->contact_pressure_MPa,
+                  "knee pairs: the Hertz peak pressure the cylinder is sized to (default: the "
+                  "mean peak pressure of `kneesim run` with the insert material)")
+      ->check(CLI::Range(0.1, 10000.0));
   cmd->add_option("--out", opts->out, "output folder")->capture_default_str();
   cmd->add_option("--max-iterations", opts->max_iterations, "wear-loop iteration limit (default: 40 blocks of two passes of the track, 640 "
                   "iterations at the defaults; the loop stops earlier at the run-in steady state)");

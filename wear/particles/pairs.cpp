@@ -52,9 +52,9 @@ BodySpec polymer_insert(const char* name, double e, double nu, double yield) {
           SurfaceSpec{0.5e-6, 0.0, 3.0, kCorrelationLength, 23, kLambdaS}, ""};
 }
 
-// knee pairs: the cylinder radius is set so that the Hertz peak pressure equals the mean peak
-// contact pressure of the materials study (13.4 / 23.6 / 36.1 MPa) with a half-width of a
-// quarter of the window, which keeps the whole nominal contact on the grid
+// knee pairs: the cylinder radius is set so that the Hertz peak pressure equals the given
+// contact pressure (kneesim's mean peak pressure of the same insert material) with a half-width
+// of a quarter of the window, which keeps the whole nominal contact on the grid
 void fit_knee_geometry(ParticleModelConfig& c, double p0) {
   const double e_star = 1.0 / (compliance(c.harder.elastic.youngs_modulus,
                                           c.harder.elastic.poisson_ratio) +
@@ -95,7 +95,26 @@ double counterface_flow_hardness(const BodySpec& harder) {
   return harder.film_hardness > 0.0 ? harder.film_hardness : 2.8 * harder.film_yield_stress;
 }
 
-ParticleModelConfig make_pair_config(PairName pair) {
+bool is_knee_pair(PairName pair) {
+  return pair == PairName::kUhmwpeCocr || pair == PairName::kPeekCocr ||
+         pair == PairName::kCfrpeekCocr;
+}
+
+const char* knee_pair_material(PairName pair) {
+  switch (pair) {
+    case PairName::kUhmwpeCocr: return "uhmwpe";
+    case PairName::kPeekCocr: return "peek";
+    case PairName::kCfrpeekCocr: return "cfr-peek";
+    default: return "";
+  }
+}
+
+ParticleModelConfig make_pair_config(PairName pair, double contact_pressure,
+                                     const std::string& contact_pressure_source) {
+  if (is_knee_pair(pair) && !(contact_pressure > 0.0)) {
+    throw InputError(std::string("pair ") + pair_name(pair) + ": the contact pressure is not "
+                     "given (contact_pressure_MPa, or a kneesim contact run of the material)");
+  }
   ParticleModelConfig c;
   c.pair = pair_name(pair);
   // the study's converged grid: 240 x 240 x 64, dx = 102 nm, dz = 95 nm
@@ -120,39 +139,44 @@ ParticleModelConfig make_pair_config(PairName pair) {
                   SurfaceSpec{760e-9, -1.0, 4.94, kCorrelationLength, 23, kLambdaS, kLay}, ""};
       c.friction = 0.3;
       c.load = 10.0;
-      // brass transfer film on the steel cylinder (layered model); 0.5 um assumed
-      c.harder.elastic.film_thickness = 0.5e-6;
+      // brass transfer film on the steel cylinder (layered model): 100 nm, the particle-size
+      // study's value (0.5 um until issue 14; docs/particles.md shows both)
+      c.harder.elastic.film_thickness = 100e-9;
       c.harder.elastic.film_modulus = 88e9;
       c.harder.elastic.film_poisson = 0.3;
       c.harder.film_yield_stress = 0.94e9;  // the film is brass from the disk
       c.harder.film_hardness = 2.64e9;      // (the disk's H; 2.8 x 0.94 = 2.63 GPa)
       c.sources = "particle-size study (physics.md section 9): brass disk E 88 GPa, H 2.64 GPa, "
-                  "sigma_y 0.94 GPa, Rq 760 nm, skewness -1, kurtosis 4.94, mu 0.3; brass transfer "
-                  "film 0.5 um on the cylinder, correlation length 2 um along sliding, lay gamma 2 and "
-                  "lambda_s 0.5 um assumed";
+                  "sigma_y 0.94 GPa, Rq 760 nm, skewness -1, kurtosis 4.94, mu 0.3, brass transfer "
+                  "film 100 nm on the cylinder; correlation length 2 um along sliding, lay gamma 2 "
+                  "and lambda_s 0.5 um assumed";
       break;
     case PairName::kUhmwpeCocr:
       c.harder = polished_cocr();
       c.softer = polymer_insert("UHMWPE", 685e6, 0.47, 17e6);
       c.friction = 0.07;
-      fit_knee_geometry(c, 13.4e6);
+      fit_knee_geometry(c, contact_pressure);
       break;
     case PairName::kPeekCocr:
       c.harder = polished_cocr();
       c.softer = polymer_insert("PEEK", 3500e6, 0.30, 100e6);
       c.friction = 0.06;
-      fit_knee_geometry(c, 23.6e6);
+      fit_knee_geometry(c, contact_pressure);
       break;
     case PairName::kCfrpeekCocr:
       c.harder = polished_cocr();
       c.softer = polymer_insert("CFR-PEEK", 18000e6, 0.40, 225e6);
       c.friction = 0.04;
-      fit_knee_geometry(c, 36.1e6);
+      fit_knee_geometry(c, contact_pressure);
       break;
+  }
+  if (is_knee_pair(pair)) {
+    c.contact_pressure = contact_pressure;
+    c.contact_pressure_source = contact_pressure_source;
   }
   if (c.sources.empty()) {
     c.sources = "materials table (physics.md section 6: E, nu, sigma_y, mu); Hertz peak = the "
-                "materials study's mean peak contact pressure; CoCr Ra 0.035 um (physics.md "
+                "contact pressure (" + contact_pressure_source + "); CoCr Ra 0.035 um (physics.md "
                 "section 9: 0.02-0.05); insert Rq 0.5 um, correlation length 2 um and lambda_s "
                 "0.5 um assumed; "
                 "H = 2.8 sigma_y";

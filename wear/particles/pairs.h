@@ -68,6 +68,10 @@ struct ParticleModelConfig {
   // there without meeting the complementarity tolerance, carrying the load exactly, with the
   // sizes unchanged against 100 (docs/particles.md)
   int contact_max_iterations = 40;  // [-]
+  // knee pairs: the Hertz peak pressure the cylinder is sized to, from a kneesim contact run
+  // of the same insert material (kneesim particles) or the config's contact_pressure_MPa
+  double contact_pressure = 0.0;  // [Pa]; 0 for the study's pairs
+  std::string contact_pressure_source;
   std::string sources;            // where the inputs come from
 };
 
@@ -76,7 +80,16 @@ struct ParticleModelConfig {
 PairName parse_pair(const std::string& name, const std::string& source);
 const char* pair_name(PairName pair);
 
-// the preset inputs of a pair (physics.md section 9 and the materials table of section 6)
-ParticleModelConfig make_pair_config(PairName pair);
+// the knee pairs (an insert material against polished CoCr), whose contact pressure is not a
+// preset: it comes from a kneesim contact run of the material
+bool is_knee_pair(PairName pair);
+// the kneesim material name of a knee pair's insert ("uhmwpe", "peek", "cfr-peek")
+const char* knee_pair_material(PairName pair);
+
+// the preset inputs of a pair (physics.md section 9 and the materials table of section 6);
+// knee pairs need contact_pressure > 0 [Pa] (the Hertz peak the cylinder is sized to) and the
+// sentence saying where it comes from, else InputError
+ParticleModelConfig make_pair_config(PairName pair, double contact_pressure = 0.0,
+                                     const std::string& contact_pressure_source = "");
 
 }  // namespace kneesim::particles

@@ -112,11 +112,25 @@ void read_body(const Reader& r, const std::string& s, BodySpec& b) {
 
 }  // namespace
 
-ParticleModelConfig read_particle_config(const std::filesystem::path& path) {
+ParticleModelConfig read_particle_config(const std::filesystem::path& path,
+                                         const KneeContactPressureFn& knee_pressure) {
   const std::string file = path.string();
   const io::TomlDocument doc = io::read_toml_file(path);
   const Reader r{file, doc, {}};
-  ParticleModelConfig c = make_pair_config(parse_pair(r.text("", "pair", "steel-steel"), file + ": pair"));
+  const PairName pair = parse_pair(r.text("", "pair", "steel-steel"), file + ": pair");
+  KneeContactPressure p;
+  if (doc.count("contact_pressure_MPa")) {
+    if (!is_knee_pair(pair)) {
+      throw InputError(file + ": contact_pressure_MPa applies to the knee pairs only (uhmwpe-cocr, "
+                       "peek-cocr, cfrpeek-cocr), not to " + pair_name(pair));
+    }
+    p.pressure = 1e6 * r.number("", "contact_pressure_MPa", 0.0, 0.1, 10000.0);
+    p.source = "contact_pressure_MPa of " + file;
+  } else {
+    r.find("", "contact_pressure_MPa");
+    if (is_knee_pair(pair) && knee_pressure) p = knee_pressure(pair);
+  }
+  ParticleModelConfig c = make_pair_config(pair, p.pressure, p.source);
   r.set("", "load_N", c.load, 1.0, 0.0, 1e6);
   r.set("", "friction", c.friction, 1.0, 0.0, 2.0);
   r.set("", "cylinder_radius_mm", c.cylinder_radius, 1e-3, 1e-6, 1e6);

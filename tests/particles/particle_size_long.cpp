@@ -106,9 +106,9 @@ TEST_CASE("steel-steel: particle size grows with load") {
 // (the plastic flow rule); fixed to the window, it is flattened by every pass of the track's
 // asperities into a plateau that conforms to the track, the contact turns partly elastic
 // (about a third of the contact cells at H instead of four fifths) and the film's lower
-// modulus then lowers the pressure. Measured at 240² with the earlier 0.5 um film: R 64 vs
-// 114 nm (preset seeds), 68 vs 113 nm (seeds +100); the preset film is now the study's 100 nm
-// (docs/particles.md, "Film thickness"). Without the film's flow (the film only as an elastic layer and a
+// modulus then lowers the pressure. Measured at 240² with the preset 0.5 um film: R 64 vs
+// 114 nm (preset seeds), 68 vs 113 nm (seeds +100). The study's 100 nm film gives R 70 nm but
+// did not reach the steady state in 640 iterations (docs/particles.md, "Film thickness"). Without the film's flow (the film only as an elastic layer and a
 // source of particles) the contact stayed fully plastic and the sizes differed by 0.4 %.
 TEST_CASE("steel-brass: the layered model gives smaller particles than the homogeneous one") {
   const SizeStats layered = run(Case{PairName::kSteelBrass, 10.0, 1.0, 1.0, true});

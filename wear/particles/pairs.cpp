@@ -139,17 +139,20 @@ ParticleModelConfig make_pair_config(PairName pair, double contact_pressure,
                   SurfaceSpec{760e-9, -1.0, 4.94, kCorrelationLength, 23, kLambdaS, kLay}, ""};
       c.friction = 0.3;
       c.load = 10.0;
-      // brass transfer film on the steel cylinder (layered model): 100 nm, the particle-size
-      // study's value (0.5 um until issue 14; docs/particles.md shows both)
-      c.harder.elastic.film_thickness = 100e-9;
+      // brass transfer film on the steel cylinder (layered model): 0.5 um, assumed. The
+      // particle-size study's film is 100 nm; with it the wear loop did not reach its run-in
+      // steady state within 640 iterations (R 70 nm against 64 nm with 0.5 um and 114 nm
+      // homogeneous; docs/particles.md, "Film thickness"), so the preset keeps the film whose
+      // results are steady and long-tested, and both are documented
+      c.harder.elastic.film_thickness = 0.5e-6;
       c.harder.elastic.film_modulus = 88e9;
       c.harder.elastic.film_poisson = 0.3;
       c.harder.film_yield_stress = 0.94e9;  // the film is brass from the disk
       c.harder.film_hardness = 2.64e9;      // (the disk's H; 2.8 x 0.94 = 2.63 GPa)
       c.sources = "particle-size study (physics.md section 9): brass disk E 88 GPa, H 2.64 GPa, "
-                  "sigma_y 0.94 GPa, Rq 760 nm, skewness -1, kurtosis 4.94, mu 0.3, brass transfer "
-                  "film 100 nm on the cylinder; correlation length 2 um along sliding, lay gamma 2 "
-                  "and lambda_s 0.5 um assumed";
+                  "sigma_y 0.94 GPa, Rq 760 nm, skewness -1, kurtosis 4.94, mu 0.3; brass transfer "
+                  "film 0.5 um on the cylinder (the study's is 100 nm), correlation length 2 um "
+                  "along sliding, lay gamma 2 and lambda_s 0.5 um assumed";
       break;
     case PairName::kUhmwpeCocr:
       c.harder = polished_cocr();

@@ -68,6 +68,7 @@ struct Data {
                                                               // x = AP [N], y = IE [N m]
 
   ContactSummary contact;
+  solid::SolidData insert_solid;  // deformable insert scratch (engine/solid/solid.h)
 };
 
 Data make_data(const Model& model);

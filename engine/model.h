@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "engine/sdf.h"
+#include "engine/solid/solid.h"
 #include "loads/iso14243/waveform.h"
 
 namespace kneesim::engine {
@@ -92,6 +93,7 @@ struct Model {
   std::vector<RestraintSpring> restraint;  // on the tibial carriage
   ContactModel contact;
   InsertSurface insert;
+  solid::SolidModel insert_solid;          // deformable insert (hex8); empty: rigid insert
   SignedDistanceField femur_sdf;           // femoral component, F frame, fine, narrow band
   SignedDistanceField femur_far_sdf;       // coarse and wide: how long far elements may sleep
   double femur_radius = 0.0;               // max |p_F| of the femoral surface [m] (0: unknown)

@@ -1,5 +1,6 @@
 // State: the integration state only (design.md) — time, carriage poses and the DOF rates at
-// the last half step. Copyable, hashable, checkpointable; nothing derivable lives here.
+// the last half step, and a deformable insert's nodes and plastic state. Copyable, hashable,
+// checkpointable; nothing derivable lives here.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,6 +21,7 @@ struct State {
   double time = 0.0;                        // [s]
   long step = 0;                            // steps taken
   std::array<CarriageState, 2> carriages;   // indexed by Carriage
+  solid::SolidState insert_solid;           // nodes and plastic state of a deformable insert
 };
 
 // FNV-1a hash over every bit of the state, for determinism tests and checkpoints

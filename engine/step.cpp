@@ -257,6 +257,12 @@ uint64_t hash_state(const State& state) {
     mix(cs.R_WB.data(), 9 * sizeof(double));
     mix(cs.rate.data(), kNumDof * sizeof(double));
   }
+  const solid::SolidState& solid = state.insert_solid;
+  mix(solid.position.data(), solid.position.size() * sizeof(Eigen::Vector3d));
+  mix(solid.velocity.data(), solid.velocity.size() * sizeof(Eigen::Vector3d));
+  mix(solid.plastic_strain.data(), solid.plastic_strain.size() * sizeof(solid::Sym6));
+  mix(solid.alpha.data(), solid.alpha.size() * sizeof(double));
+  mix(solid.plastic_work.data(), solid.plastic_work.size() * sizeof(double));
   return h;
 }
 

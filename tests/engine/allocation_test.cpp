@@ -13,6 +13,7 @@
 
 #include "engine/step.h"
 #include "engine_fixtures.h"
+#include "solid_fixtures.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define KNEESIM_ASAN 1
@@ -111,6 +112,33 @@ TEST_CASE("step() does not allocate") {
   const long allocations = g_allocations.load() - before;
   MESSAGE("step(): " << allocations << " heap allocations over 2000 steps (t = " << state.time
                      << " s)");
+  CHECK(failures == 0);
+  CHECK(allocations == 0);
+}
+
+TEST_CASE("step_solid() does not allocate") {
+  // a plastic block on 2 threads under a constant load: 20 warm-up steps, 500 counted
+  const Eigen::Vector3d size(0.01, 0.006, 0.008);
+  const test::BoxMesh mesh = test::make_box(6, 4, 5, size);
+  std::vector<uint8_t> fix(mesh.nodes.size(), 0);
+  for (size_t n = 0; n < mesh.nodes.size(); ++n)
+    if (mesh.nodes[n].y() == 0.0) fix[n] = engine::solid::kFixAll;
+  engine::solid::SolidOptions options;
+  options.threads = 2;
+  const engine::solid::SolidModel model = engine::solid::make_solid_model(
+      mesh.nodes, mesh.elements, test::make_uhmwpe_plastic(), options, fix);
+  engine::solid::SolidState state = engine::solid::make_solid_state(model);
+  engine::solid::SolidData data = engine::solid::make_solid_data(model);
+  for (size_t n = 0; n < mesh.nodes.size(); ++n)
+    if (mesh.nodes[n].y() == size.y()) data.external_force[n] = Eigen::Vector3d(0.0, -20.0, 0.0);
+  const double dt = 0.7 * model.dt_critical;
+  for (int i = 0; i < 20; ++i) engine::solid::step_solid(model, state, data, dt);
+  const long before = g_allocations.load();
+  int failures = 0;
+  for (int i = 0; i < 500; ++i) {
+    failures += engine::solid::step_solid(model, state, data, dt) != engine::solid::SolidStatus::kOk;
+  }
+  const long allocations = g_allocations.load() - before;
   CHECK(failures == 0);
   CHECK(allocations == 0);
 }

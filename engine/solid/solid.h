@@ -1,0 +1,78 @@
+// The deformable solid of the engine (hex8 mesh) in the Model / State / Data split
+// (design.md): SolidModel holds the mesh, material and everything precomputed from the
+// reference configuration; SolidState the nodal positions and velocities and the plastic
+// state of each element; SolidData the per-step scratch (element force buffers, nodal
+// forces, stresses, energies). Positions are in one frame chosen by the owner (S).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "engine/solid/hex8.h"
+#include "engine/solid/solid_material.h"
+
+namespace kneesim::engine::solid {
+
+// per-node constraint bits: a constrained DOF moves with the prescribed velocity in SolidData
+inline constexpr uint8_t kFixX = 1, kFixY = 2, kFixZ = 4, kFixAll = 7;
+
+struct SolidModel {
+  SolidMaterial material;
+  std::vector<Eigen::Vector3d> reference_positions;  // X [m], n_nodes
+  std::vector<std::array<int, kHexNodes>> elements;  // node ids, n_elements
+  std::vector<Hex8Reference> reference;              // per element
+  std::vector<double> nodal_mass;        // lumped mass incl. any mass scaling [kg], n_nodes
+  std::vector<double> inverse_mass;      // 1 / nodal_mass [1/kg], n_nodes
+  std::vector<uint8_t> constraint;       // kFix* bits, n_nodes
+  // node -> (element, local node) incidence in CSR form, ascending element order: the
+  // fixed gather order of the element force buffers
+  std::vector<int> incidence_start;      // n_nodes + 1
+  std::vector<int> incidence;            // element * 8 + local node
+  double physical_mass = 0.0;            // rho V [kg]
+  double added_mass = 0.0;               // mass added by mass scaling [kg]
+  double dt_critical = 0.0;              // min over elements of L_e / c [s] (with scaled mass)
+  double damping_alpha = 0.0;            // mass-proportional damping [1/s] (0: undamped)
+  int threads = 1;                       // OpenMP threads of the element and node loops
+
+  int num_nodes() const { return static_cast<int>(reference_positions.size()); }
+  int num_elements() const { return static_cast<int>(elements.size()); }
+  bool empty() const { return elements.empty(); }
+};
+
+struct SolidState {
+  std::vector<Eigen::Vector3d> position;   // x [m], n_nodes
+  std::vector<Eigen::Vector3d> velocity;   // v at t - dt/2 [m/s], n_nodes
+  std::vector<Sym6> plastic_strain;        // E_p (Green-Lagrange) [-], n_elements
+  std::vector<double> alpha;               // equivalent plastic strain [-], n_elements
+  std::vector<double> plastic_work;        // dissipated plastic work [J], n_elements
+};
+
+// what calc_solid_forces found at the current positions
+enum class SolidStatus { kOk, kInverted };
+
+struct SolidData {
+  std::vector<Eigen::Vector3d> external_force;      // applied by the owner [N], n_nodes
+  std::vector<Eigen::Vector3d> prescribed_velocity; // of constrained DOFs over the step [m/s]
+  std::vector<std::array<Eigen::Vector3d, kHexNodes>> element_force;  // internal [N]
+  std::vector<Eigen::Vector3d> internal_force;      // gathered [N], n_nodes
+  std::vector<Sym6> stress;                // second Piola-Kirchhoff S [Pa], n_elements
+  std::vector<double> von_mises;           // of S [Pa], n_elements
+  std::vector<double> strain_energy;       // elastic, element [J], n_elements
+  std::vector<double> hourglass_energy;    // [J], n_elements
+  // the plastic state the current positions produce, committed by step_solid
+  std::vector<Sym6> next_plastic_strain;
+  std::vector<double> next_alpha;
+  std::vector<double> next_plastic_work;
+  std::vector<double> jacobian_ratio;      // det F of each element [-]
+  SolidStatus status = SolidStatus::kOk;
+  int inverted_element = -1;               // lowest element id with det F <= 0
+  double kinetic_energy = 0.0;             // at the last completed step [J]
+  double total_strain_energy = 0.0;        // elastic + hourglass [J]
+  double total_hourglass_energy = 0.0;     // [J]
+  double total_plastic_work = 0.0;         // [J]
+  std::vector<double> nodal_kinetic_energy;  // scratch of the kinetic energy sum [J], n_nodes
+};
+
+}  // namespace kneesim::engine::solid

@@ -1,0 +1,119 @@
+#include "engine/solid/solid_step.h"
+
+#include <Eigen/LU>
+
+namespace kneesim::engine::solid {
+
+void calc_hex8_response(const Hex8Reference& ref, const SolidMaterial& material,
+                        const HexPoints& x, const Sym6& plastic_strain, double alpha,
+                        Hex8Response& out) {
+  const Eigen::Matrix3d F = calc_deformation_gradient(ref.gradient, x);
+  out.det_F = F.determinant();
+  // Green-Lagrange strain and the material's second Piola-Kirchhoff stress
+  const Eigen::Matrix3d E = 0.5 * (F.transpose() * F - Eigen::Matrix3d::Identity());
+  out.update = calc_stress(material, to_voigt(E), plastic_strain, alpha);
+  const Eigen::Matrix3d S = from_voigt(out.update.stress);
+  // nodal forces f_a = V0 F S B_a
+  const Eigen::Matrix3d P = ref.volume * (F * S);
+  for (int a = 0; a < kHexNodes; ++a) out.force[a] = P * ref.gradient.row(a).transpose();
+  // elastic energy V0 S : E_e / 2
+  const Sym6 e = to_voigt(E) - out.update.plastic_strain;
+  const Sym6& s = out.update.stress;
+  out.strain_energy = 0.5 * ref.volume *
+                      (s[0] * e[0] + s[1] * e[1] + s[2] * e[2] +
+                       2.0 * (s[3] * e[3] + s[4] * e[4] + s[5] * e[5]));
+  // hourglass forces on the hourglass displacements q_m = sum_a gamma_m,a x_a
+  out.hourglass_energy = 0.0;
+  for (int m = 0; m < kHourglassModes; ++m) {
+    Eigen::Vector3d q = -ref.hourglass_offset[m];
+    for (int a = 0; a < kHexNodes; ++a) q += ref.gamma(m, a) * x[a];
+    const Eigen::Vector3d kq = ref.hourglass_stiffness[m] * q;
+    out.hourglass_energy += 0.5 * q.dot(kq);
+    for (int a = 0; a < kHexNodes; ++a) out.force[a] += ref.gamma(m, a) * kq;
+  }
+}
+
+void calc_solid_forces(const SolidModel& model, const SolidState& state, SolidData& data) {
+  const int n_el = model.num_elements(), n_nodes = model.num_nodes();
+  // element loop: each element writes only its own buffers
+#pragma omp parallel for num_threads(model.threads) schedule(static)
+  for (int e = 0; e < n_el; ++e) {
+    HexPoints x;
+    for (int a = 0; a < kHexNodes; ++a) x[a] = state.position[model.elements[e][a]];
+    Hex8Response r;
+    calc_hex8_response(model.reference[e], model.material, x, state.plastic_strain[e],
+                       state.alpha[e], r);
+    data.element_force[e] = r.force;
+    data.stress[e] = r.update.stress;
+    data.von_mises[e] = calc_von_mises(r.update.stress);
+    data.next_plastic_strain[e] = r.update.plastic_strain;
+    data.next_alpha[e] = r.update.alpha;
+    data.next_plastic_work[e] = state.plastic_work[e] + r.update.plastic_work * model.reference[e].volume;
+    data.strain_energy[e] = r.strain_energy;
+    data.hourglass_energy[e] = r.hourglass_energy;
+    data.jacobian_ratio[e] = r.det_F;
+  }
+  // node loop: gather in ascending element order
+#pragma omp parallel for num_threads(model.threads) schedule(static)
+  for (int n = 0; n < n_nodes; ++n) {
+    Eigen::Vector3d f = Eigen::Vector3d::Zero();
+    for (int k = model.incidence_start[n]; k < model.incidence_start[n + 1]; ++k) {
+      const int id = model.incidence[k];
+      f += data.element_force[id / kHexNodes][id % kHexNodes];
+    }
+    data.internal_force[n] = f;
+  }
+  // serial sums in element order (deterministic) and the inversion check
+  data.status = SolidStatus::kOk;
+  data.inverted_element = -1;
+  double strain = 0.0, hourglass = 0.0, plastic = 0.0;
+  for (int e = 0; e < n_el; ++e) {
+    strain += data.strain_energy[e];
+    hourglass += data.hourglass_energy[e];
+    plastic += data.next_plastic_work[e];
+    if (!(data.jacobian_ratio[e] > 0.0) && data.inverted_element < 0) {
+      data.status = SolidStatus::kInverted;
+      data.inverted_element = e;
+    }
+  }
+  data.total_strain_energy = strain + hourglass;
+  data.total_hourglass_energy = hourglass;
+  data.total_plastic_work = plastic;
+}
+
+SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& data, double dt) {
+  // stresses and internal forces at x(n)
+  calc_solid_forces(model, state, data);
+  if (data.status != SolidStatus::kOk) return data.status;
+  // central-difference update of the nodes; kinetic energy at t(n) from the mean of the
+  // half-step velocities
+  const int n_nodes = model.num_nodes(), n_el = model.num_elements();
+  const double c = 0.5 * dt * model.damping_alpha;
+#pragma omp parallel for num_threads(model.threads) schedule(static)
+  for (int n = 0; n < n_nodes; ++n) {
+    const Eigen::Vector3d v_old = state.velocity[n];
+    Eigen::Vector3d v = ((1.0 - c) * v_old + dt * model.inverse_mass[n] *
+                                                 (data.external_force[n] - data.internal_force[n])) /
+                        (1.0 + c);
+    const uint8_t fixed = model.constraint[n];
+    for (int i = 0; i < 3; ++i) {
+      if (fixed & (1u << i)) v[i] = data.prescribed_velocity[n][i];
+    }
+    state.velocity[n] = v;
+    state.position[n] += dt * v;
+    data.nodal_kinetic_energy[n] = 0.125 * model.nodal_mass[n] * (v + v_old).squaredNorm();
+  }
+  // commit the plastic state the forces were computed with
+#pragma omp parallel for num_threads(model.threads) schedule(static)
+  for (int e = 0; e < n_el; ++e) {
+    state.plastic_strain[e] = data.next_plastic_strain[e];
+    state.alpha[e] = data.next_alpha[e];
+    state.plastic_work[e] = data.next_plastic_work[e];
+  }
+  double kinetic = 0.0;
+  for (int n = 0; n < n_nodes; ++n) kinetic += data.nodal_kinetic_energy[n];
+  data.kinetic_energy = kinetic;
+  return SolidStatus::kOk;
+}
+
+}  // namespace kneesim::engine::solid

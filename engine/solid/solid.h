@@ -55,6 +55,11 @@ enum class SolidStatus { kOk, kInverted };
 struct SolidData {
   std::vector<Eigen::Vector3d> external_force;      // applied by the owner [N], n_nodes
   std::vector<Eigen::Vector3d> prescribed_velocity; // of constrained DOFs over the step [m/s]
+  // regularized contact friction on a node, integrated implicitly by step_solid: a viscosity
+  // on the velocity relative to the touching body, tangential to its normal
+  std::vector<double> friction_viscosity;           // [N s/m], n_nodes (0: no friction)
+  std::vector<Eigen::Vector3d> friction_normal;     // unit normal of the body, n_nodes
+  std::vector<Eigen::Vector3d> friction_body_velocity;  // [m/s], n_nodes
   std::vector<std::array<Eigen::Vector3d, kHexNodes>> element_force;  // internal [N]
   std::vector<Eigen::Vector3d> internal_force;      // gathered [N], n_nodes
   std::vector<Sym6> stress;                // second Piola-Kirchhoff S [Pa], n_elements

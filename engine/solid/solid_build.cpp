@@ -17,20 +17,20 @@ std::string format(double v) {
 
 void check_solid_material(const SolidMaterial& m) {
   if (!(m.youngs_modulus > 0.0)) {
-    throw SolidInputError("solid material: Young's modulus " + format(m.youngs_modulus) +
+    throw InputError("solid material: Young's modulus " + format(m.youngs_modulus) +
                           " Pa is out of range (must be > 0)");
   }
   if (!(m.poisson >= 0.0 && m.poisson < 0.5)) {
-    throw SolidInputError("solid material: Poisson ratio " + format(m.poisson) +
+    throw InputError("solid material: Poisson ratio " + format(m.poisson) +
                           " is out of range (0 <= nu < 0.5; a solid at 0.5 is incompressible)");
   }
   if (!(m.density > 0.0)) {
-    throw SolidInputError("solid material: density " + format(m.density) +
+    throw InputError("solid material: density " + format(m.density) +
                           " kg/m^3 is out of range (must be > 0)");
   }
   if (m.kind == SolidMaterialKind::kJ2Plastic &&
       !(m.yield_stress > 0.0 && m.hardening_modulus >= 0.0)) {
-    throw SolidInputError("solid material: yield stress " + format(m.yield_stress) +
+    throw InputError("solid material: yield stress " + format(m.yield_stress) +
                           " Pa and hardening modulus " + format(m.hardening_modulus) +
                           " Pa are out of range (yield > 0, hardening >= 0)");
   }
@@ -55,7 +55,7 @@ SolidModel make_solid_model(std::vector<Eigen::Vector3d> nodes,
   const int n_nodes = model.num_nodes(), n_el = model.num_elements();
   model.constraint = constraint.empty() ? std::vector<uint8_t>(n_nodes, 0) : std::move(constraint);
   if (static_cast<int>(model.constraint.size()) != n_nodes) {
-    throw SolidInputError("solid mesh: " + std::to_string(model.constraint.size()) +
+    throw InputError("solid mesh: " + std::to_string(model.constraint.size()) +
                           " constraint flags for " + std::to_string(n_nodes) + " nodes");
   }
 
@@ -68,7 +68,7 @@ SolidModel make_solid_model(std::vector<Eigen::Vector3d> nodes,
     for (int a = 0; a < kHexNodes; ++a) {
       const int n = model.elements[e][a];
       if (n < 0 || n >= n_nodes) {
-        throw SolidInputError("solid mesh: element " + std::to_string(e) + " names node " +
+        throw InputError("solid mesh: element " + std::to_string(e) + " names node " +
                               std::to_string(n) + ", outside 0.." + std::to_string(n_nodes - 1));
       }
       X[a] = model.reference_positions[n];
@@ -77,7 +77,7 @@ SolidModel make_solid_model(std::vector<Eigen::Vector3d> nodes,
     const Hex8Reference& ref = model.reference[e] =
         make_hex8_reference(X, material.youngs_modulus, material.shear_modulus());
     if (!(ref.min_jacobian > 0.0)) {
-      throw SolidInputError("solid mesh: element " + std::to_string(e) +
+      throw InputError("solid mesh: element " + std::to_string(e) +
                             " is inverted or degenerate in its reference configuration "
                             "(smallest corner Jacobian " + format(ref.min_jacobian) +
                             " m^3, must be > 0)");
@@ -126,6 +126,9 @@ SolidData make_solid_data(const SolidModel& model) {
   const int nn = model.num_nodes(), ne = model.num_elements();
   d.external_force.assign(nn, Eigen::Vector3d::Zero());
   d.prescribed_velocity.assign(nn, Eigen::Vector3d::Zero());
+  d.friction_viscosity.assign(nn, 0.0);
+  d.friction_normal.assign(nn, Eigen::Vector3d::UnitY());
+  d.friction_body_velocity.assign(nn, Eigen::Vector3d::Zero());
   d.element_force.resize(ne);
   d.internal_force.assign(nn, Eigen::Vector3d::Zero());
   d.stress.assign(ne, Sym6::Zero());

@@ -16,10 +16,10 @@
 // stay small for the result to be quasi-static).
 #pragma once
 
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "engine/errors.h"
 #include "engine/solid/solid.h"
 
 namespace kneesim::engine::solid {
@@ -30,16 +30,11 @@ struct SolidOptions {
   int threads = 1;               // OpenMP threads
 };
 
-// bad solid input (an inverted element, a material out of range); the message is one
-// sentence naming the element or the field, the value and the allowed range
-struct SolidInputError : std::invalid_argument {
-  using std::invalid_argument::invalid_argument;
-};
-
 // checks the material: E > 0, 0 <= nu < 0.5, rho > 0, yield >= 0, H >= 0
 void check_solid_material(const SolidMaterial& material);
 
-// the Model part of a hex8 mesh; throws SolidInputError for a material out of range or an
+// the Model part of a hex8 mesh; throws InputError (one sentence naming the element or the
+// field, the value and the allowed range) for a material out of range or an
 // element inverted or degenerate in its reference configuration
 SolidModel make_solid_model(std::vector<Eigen::Vector3d> nodes,
                             std::vector<std::array<int, kHexNodes>> elements,

@@ -95,6 +95,14 @@ SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& da
     Eigen::Vector3d v = ((1.0 - c) * v_old + dt * model.inverse_mass[n] *
                                                  (data.external_force[n] - data.internal_force[n])) /
                         (1.0 + c);
+    if (data.friction_viscosity[n] > 0.0) {
+      // friction implicit: (I + a P)(v_new - v_body) = v - v_body with P the tangential
+      // projector, solved by (I + a P)^-1 = I - a / (1 + a) P
+      const double a = dt * model.inverse_mass[n] * data.friction_viscosity[n];
+      const Eigen::Vector3d& nb = data.friction_normal[n];
+      const Eigen::Vector3d rel = v - data.friction_body_velocity[n];
+      v -= (a / (1.0 + a)) * (rel - rel.dot(nb) * nb);
+    }
     const uint8_t fixed = model.constraint[n];
     for (int i = 0; i < 3; ++i) {
       if (fixed & (1u << i)) v[i] = data.prescribed_velocity[n][i];

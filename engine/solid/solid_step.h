@@ -27,7 +27,8 @@ void calc_hex8_response(const Hex8Reference& ref, const SolidMaterial& material,
 void calc_solid_forces(const SolidModel& model, const SolidState& state, SolidData& data);
 
 // advances the solid by dt: forces at x(n), v(n+1/2) = v(n-1/2) + dt (f_ext - f_int) / m
-// (with mass-proportional damping, implicit in its own term), constrained DOFs at the
+// (with mass-proportional damping, implicit in its own term, and the contact friction
+// viscosity of data.friction_*, implicit on the tangential velocity), constrained DOFs at the
 // prescribed velocity, x(n+1) = x(n) + dt v(n+1/2), and the plastic state committed. Returns
 // kInverted without moving anything when an element has inverted.
 SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& data, double dt);

@@ -100,18 +100,19 @@ MeasuredKinematics read_sto(const std::filesystem::path& file, const Eigen::Vect
 
 MeasuredKinematics read_csv(const std::filesystem::path& file) {
   TextTable t = read_text_table(file, TextFormat::csv);
-  const std::string required = "gait_pct, flexion_deg, ap_mm, ie_deg";
+  const std::string required = "gait_pct, ap_mm, ie_deg (optional flexion_deg, ml_mm, vv_deg, is_mm)";
   MeasuredKinematics k;
   k.source = display_path(file);
   k.gait_pct = read_pct(t, require_column(t, "gait_pct", required));
-  k.flexion_deg = read_column(t, require_column(t, "flexion_deg", required));
+  if (int c = t.column("flexion_deg"); c >= 0) k.flexion_deg = read_column(t, c);
   k.ap_mm = read_column(t, require_column(t, "ap_mm", required));
   k.ie_deg = read_column(t, require_column(t, "ie_deg", required));
   if (int c = t.column("ml_mm"); c >= 0) k.ml_mm = read_column(t, c);
   if (int c = t.column("vv_deg"); c >= 0) k.vv_deg = read_column(t, c);
   if (int c = t.column("is_mm"); c >= 0) k.is_mm = read_column(t, c);
   auto at = [](const std::vector<double>& v, std::size_t i) { return v.empty() ? 0.0 : v[i]; };
-  for (std::size_t i = 0; i < k.size(); ++i) {
+  // without flexion the pose is undefined: a comparison needs only AP and IE
+  for (std::size_t i = 0; i < (k.flexion_deg.empty() ? 0 : k.size()); ++i) {
     k.X_TF.push_back(pose_from_channels(k.flexion_deg[i], k.ap_mm[i], k.ie_deg[i], at(k.ml_mm, i),
                                         at(k.vv_deg, i), at(k.is_mm, i)));
   }
@@ -135,8 +136,9 @@ MeasuredKinematics read_kinematics(const std::filesystem::path& file,
 }
 
 Waveform to_waveform(const MeasuredKinematics& k) {
-  std::vector<std::string> names = {"flexion_deg", "ap_mm", "ie_deg"};
-  std::vector<std::vector<double>> cols = {k.flexion_deg, k.ap_mm, k.ie_deg};
+  std::vector<std::string> names = {"ap_mm", "ie_deg"};
+  std::vector<std::vector<double>> cols = {k.ap_mm, k.ie_deg};
+  if (!k.flexion_deg.empty()) names.insert(names.begin(), "flexion_deg"), cols.insert(cols.begin(), k.flexion_deg);
   if (!k.ml_mm.empty()) names.push_back("ml_mm"), cols.push_back(k.ml_mm);
   if (!k.vv_deg.empty()) names.push_back("vv_deg"), cols.push_back(k.vv_deg);
   if (!k.is_mm.empty()) names.push_back("is_mm"), cols.push_back(k.is_mm);

@@ -15,8 +15,9 @@
 // tibia: exactly the sequence of the Grand Challenge .sto files, so no information is lost.
 //
 // Sources:
-//  (a) CSV with columns gait_pct, flexion_deg, ap_mm, ie_deg and optional ml_mm, vv_deg, is_mm,
-//      already in this convention;
+//  (a) CSV with columns gait_pct, ap_mm, ie_deg and optional flexion_deg, ml_mm, vv_deg, is_mm,
+//      already in this convention (without flexion_deg there is no pose X_TF, and displacement
+//      mode keeps the gait file's flexion);
 //  (b) OpenSim .sto of the Grand Challenge DM subject (see the data README): despite the
 //      column names, knee_ant_r/sup_r/lat_r are the x/y/z translation in metres and
 //      knee_flex_r/add_r/rot_r the rotations about x/y/z in radians, with
@@ -36,14 +37,14 @@ namespace kneesim::loads {
 struct MeasuredKinematics {
   std::string source;                   // file it was read from
   std::vector<double> gait_pct;         // [%] strictly increasing in 0..100, n
-  std::vector<double> flexion_deg;      // [deg] n
+  std::vector<double> flexion_deg;      // [deg] n, or empty when a CSV has none
   std::vector<double> ap_mm;            // [mm] n
   std::vector<double> ie_deg;           // [deg] n
   std::vector<double> ml_mm;            // [mm] n, or empty when the source has none
   std::vector<double> vv_deg;           // [deg] n, or empty when the source has none
   std::vector<double> is_mm;            // [mm] n, or empty when the source has none
   std::vector<Eigen::Isometry3d> X_TF;  // pose of F in T [m], project axes, n (absent
-                                        // channels taken as zero)
+                                        // channels taken as zero); empty without flexion
   std::size_t size() const { return gait_pct.size(); }
 };
 

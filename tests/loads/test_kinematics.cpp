@@ -121,11 +121,23 @@ TEST_CASE("CSV kinematics: required and optional columns, pose convention") {
   CHECK(w.value(1, 75.0) == doctest::Approx(-2.5));  // wraps from 50 % (-3) to 100 % (-2)
 }
 
+TEST_CASE("the documented 3-column CSV (gait_pct, ap_mm, ie_deg) reads for a comparison") {
+  // reference: README and `kneesim run --help` document this form for --measured
+  TempDir dir;
+  const auto k = read_kinematics(dir.write("m.csv", "gait_pct,ap_mm,ie_deg\n0,1,2\n50,-1,4\n"));
+  CHECK(k.size() == 2);
+  CHECK(k.flexion_deg.empty());
+  CHECK(k.X_TF.empty());  // no pose without flexion
+  CHECK(k.ie_deg[1] == 4.0);
+  const auto w = kneesim::loads::to_waveform(k);
+  CHECK(w.channel_names() == std::vector<std::string>{"ap_mm", "ie_deg"});
+}
+
 TEST_CASE("kinematics error messages") {
   TempDir dir;
   CHECK(read_error(dir.write("a.csv", "gait_pct,flexion_deg,ie_deg\n0,1,2\n5,1,2\n"))
-            .find(": column 'ap_mm' is missing; required columns are gait_pct, flexion_deg, "
-                  "ap_mm, ie_deg.") != std::string::npos);
+            .find(": column 'ap_mm' is missing; required columns are gait_pct, ap_mm, ie_deg "
+                  "(optional flexion_deg, ml_mm, vv_deg, is_mm).") != std::string::npos);
   CHECK(read_error(dir.write("b.csv", "gait_pct,flexion_deg,ap_mm,ie_deg\n0,1,2,3\n"))
             .find(": 1 data row(s); at least 2 are needed.") != std::string::npos);
   CHECK(read_error(dir.write("c.csv", "gait_pct,flexion_deg,ap_mm,ie_deg\n0,1,2,3\n5,1,two,3\n"))

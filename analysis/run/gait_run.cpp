@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "engine/io/json_out.h"
 #include "engine/io/plot.h"
@@ -21,7 +22,8 @@ void clear_outputs(const std::filesystem::path& dir) {
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
     if (name == "kinematics.csv" || name == "summary.json" || name == "kinematics.png" ||
-        name == "kinematics.partial.csv" || name == "measured_kinematics.csv" || name.rfind("pressure_", 0) == 0) {
+        name == "kinematics.partial.csv" || name == "measured_kinematics.csv" ||
+        name == "summary.failed.json" || name.rfind("pressure_", 0) == 0) {
       fs::remove(e.path());
     }
   }
@@ -29,9 +31,16 @@ void clear_outputs(const std::filesystem::path& dir) {
 
 io::Table make_measured_table(const loads::MeasuredKinematics& k) {
   io::Table t;
-  t.columns = {"gait_pct", "flexion_deg", "ap_mm", "ie_deg"};
+  // flexion only when the file had it (the documented 3-column form has none)
+  const bool flexion = !k.flexion_deg.empty();
+  t.columns = flexion ? std::vector<std::string>{"gait_pct", "flexion_deg", "ap_mm", "ie_deg"}
+                      : std::vector<std::string>{"gait_pct", "ap_mm", "ie_deg"};
   for (size_t i = 0; i < k.size(); ++i) {
-    t.add_row({k.gait_pct[i], k.flexion_deg[i], k.ap_mm[i], k.ie_deg[i]});
+    if (flexion) {
+      t.add_row({k.gait_pct[i], k.flexion_deg[i], k.ap_mm[i], k.ie_deg[i]});
+    } else {
+      t.add_row({k.gait_pct[i], k.ap_mm[i], k.ie_deg[i]});
+    }
   }
   return t;
 }
@@ -48,6 +57,17 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   namespace fs = std::filesystem;
   const models::Config& config = job.config;
   const fs::path& out = job.out;
+  // the measured curve is read before the simulation: a bad file costs no run
+  std::optional<loads::MeasuredKinematics> measured;
+  if (!config.measured_kinematics.empty()) {
+    // the measured pose is reported about the same femoral reference point as the simulation
+    const Eigen::Vector3d p_FR_F = Eigen::Vector3d(config.femur_origin_mm[0],
+                                                   config.femur_origin_mm[1],
+                                                   config.femur_origin_mm[2]) * 1e-3;
+    measured = loads::read_kinematics(
+        models::resolve_path(config, config.measured_kinematics),
+        config.implant_kind == "mesh" ? p_FR_F : Eigen::Vector3d::Zero());
+  }
   models::BuiltModel built = models::build_model(config);
   const engine::Model& model = built.model;
   if (job.on_built) job.on_built(built);
@@ -100,15 +120,8 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   io::write_csv(out / "kinematics.csv", table);
   std::vector<std::string> plot_args = {(out / "kinematics.csv").string(),
                                         (out / "kinematics.png").string()};
-  if (!config.measured_kinematics.empty()) {
-    // the measured pose is reported about the same femoral reference point as the simulation
-    const Eigen::Vector3d p_FR_F = Eigen::Vector3d(config.femur_origin_mm[0],
-                                                   config.femur_origin_mm[1],
-                                                   config.femur_origin_mm[2]) * 1e-3;
-    const loads::MeasuredKinematics measured = loads::read_kinematics(
-        models::resolve_path(config, config.measured_kinematics),
-        config.implant_kind == "mesh" ? p_FR_F : Eigen::Vector3d::Zero());
-    io::write_csv(out / "measured_kinematics.csv", make_measured_table(measured));
+  if (measured) {
+    io::write_csv(out / "measured_kinematics.csv", make_measured_table(*measured));
     plot_args.push_back("--measured");
     plot_args.push_back((out / "measured_kinematics.csv").string());
   }

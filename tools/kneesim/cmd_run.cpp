@@ -63,8 +63,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("config", args->config, "TOML config file (every key defaulted)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
-  cmd->add_option("--cycles", args->cycles, "gait cycles (outputs from the last)")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--cycles", args->cycles, "gait cycles (outputs from the last), 1 to 1000000")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--set", args->sets,
                   "override a config key, e.g. --set rig.preset=iso --set material.name=peek "
                   "(repeatable; value in TOML syntax)");

@@ -1,6 +1,7 @@
 // The `kneesim` program: sub-commands run, wear, compare, study, diagnose, bor, particles.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "engine/errors.h"
 #include "tools/kneesim/commands.h"
@@ -20,10 +21,27 @@ int main(int argc, char** argv) {
   kneesim::cli::add_compare_command(app);
   kneesim::cli::add_bor_command(app);
   kneesim::cli::add_diagnose_command(app);
+  // an unknown first word is a mistyped command, not a missing one (CLI11 would say "A
+  // subcommand is required")
+  std::string names;
+  bool known = false;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+    known = known || (argc > 1 && sub->check_name(argv[1]));
+  }
+  if (argc > 1 && argv[1][0] != '-' && !known) {
+    std::fprintf(stderr, "error: '%s' is not a kneesim command; the commands are %s (see "
+                 "kneesim --help).\n", argv[1], names.c_str());
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0 through CLI11; every other parse error is bad input (2),
+    // not CLI11's own codes (104-114)
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
   } catch (const kneesim::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -65,6 +65,35 @@ void check_implant_size(const TriMesh& m, const std::filesystem::path& file,
   throw InputError(buf);
 }
 
+// The femoral distance field is built on a dense node grid over the femur's box grown by the
+// band (engine/sdf.cpp; only the result is stored in bricks): while it is built each node
+// holds a float best distance, an int nearest triangle, a float distance and two flag bytes.
+// A fine spacing over a large femur would ask for tens of GB and die in allocation or thread
+// start-up, so the estimate is checked first.
+constexpr double kSdfBytesPerNode = 14.0;
+constexpr double kSdfMemoryLimitBytes = 8e9;
+
+void check_sdf_memory(const Config& c, const TriMesh& femur) {
+  const double spacing = c.sdf_spacing_mm * kMm, band = c.sdf_band_mm * kMm;
+  Eigen::Vector3d lo = femur.vertices.front(), hi = femur.vertices.front();
+  for (const auto& v : femur.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const Eigen::Vector3d extent =
+      hi - lo + Eigen::Vector3d::Constant(2.0 * (band + 2.0 * spacing));
+  double nodes = 1.0;
+  for (int a = 0; a < 3; ++a) nodes *= std::ceil(extent[a] / spacing) + 1.0;
+  const double bytes = nodes * kSdfBytesPerNode;
+  if (bytes <= kSdfMemoryLimitBytes) return;
+  const double finest_mm = c.sdf_spacing_mm * std::cbrt(bytes / kSdfMemoryLimitBytes) * 1.01;
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "%s: contact.sdf_spacing_mm = %g needs a femoral distance field of %.3g "
+                "nodes, about %.1f GB while it is built; allowed: at most %.0f GB, i.e. "
+                "contact.sdf_spacing_mm >= %.2f for this femur.",
+                config_name(c).c_str(), c.sdf_spacing_mm, nodes, bytes * 1e-9,
+                kSdfMemoryLimitBytes * 1e-9, std::ceil(finest_mm * 100.0) / 100.0);
+  throw InputError(buf);
+}
+
 Implant make_implant(const Config& c, double& base_y) {
   Implant imp;
   if (c.implant_kind == "generic") {
@@ -280,7 +309,9 @@ BuiltModel build_model(const Config& c) {
                      "; allowed: below the largest face normal y)");
   }
 
-  // femoral distance fields, built once per femoral mesh and field parameters in a process
+  // femoral distance fields, built once per femoral mesh and field parameters in a process;
+  // the build's dense scratch grid is sized before it is allocated
+  check_sdf_memory(c, out.implant.femur);
   const auto sdf_start = std::chrono::steady_clock::now();
   m.femur_sdf = find_or_make_distance_field(out.implant.femur.vertices,
                                             out.implant.femur.triangles,

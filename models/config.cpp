@@ -69,6 +69,15 @@ class Registry {
                     },
                     allowed};
   }
+  // a sign flip: exactly -1 or +1 (a fraction would silently scale the channel)
+  void sign(const std::string& key, double& target) {
+    fields_[key] = {[&target, key](const Value& v, const std::string& where) {
+                      const double* d = std::get_if<double>(&v);
+                      if (!d || (*d != 1.0 && *d != -1.0)) fail_value(where, key, v, "-1 or 1");
+                      target = *d;
+                    },
+                    "-1 or 1"};
+  }
   void text(const std::string& key, std::string& target) {
     fields_[key] = {[&target, key](const Value& v, const std::string& where) {
                       const std::string* s = std::get_if<std::string>(&v);
@@ -222,8 +231,8 @@ Registry make_registry(Config& c) {
   r.text("gait.file", c.gait_file);
   r.text("gait.kinematics_file", c.kinematics_file);
   r.number("gait.period_s", c.period_s, 0.1, 100);
-  r.number("gait.ap_sign", c.ap_sign, -1, 1);
-  r.number("gait.ie_sign", c.ie_sign, -1, 1);
+  r.sign("gait.ap_sign", c.ap_sign);
+  r.sign("gait.ie_sign", c.ie_sign);
   r.number("gait.axial_force_scale", c.axial_force_scale, 0, 10);
   r.number("gait.ap_force_scale", c.ap_force_scale, 0, 10);
   r.number("gait.ie_torque_scale", c.ie_torque_scale, 0, 10);

@@ -70,6 +70,20 @@ TEST_CASE("config errors name the file or key, the value and the allowed range")
     check_mentions(input_error([] { test::default_config({"contact.friction=-0.1"}); }),
                    {"contact.friction", "-0.1", "[0, 1]"});
   }
+  SUBCASE("a distance-field spacing whose grid would not fit in memory is refused first") {
+    // reference: 0.05 mm over the built-in femur is about 1e9 nodes x 14 bytes during the
+    // build (engine/sdf.cpp), beyond the 8 GB limit; the message gives the estimate
+    check_mentions(input_error([] {
+                     models::build_model(test::default_config({"contact.sdf_spacing_mm=0.05"}));
+                   }),
+                   {"contact.sdf_spacing_mm = 0.05", "GB while it is built", "at most 8 GB",
+                    "contact.sdf_spacing_mm >="});
+  }
+  SUBCASE("a sign key takes -1 or 1 only (0.3 would scale the channel)") {
+    check_mentions(input_error([] { test::default_config({"gait.ap_sign=0.3"}); }),
+                   {"gait.ap_sign", "0.3", "-1 or 1"});
+    CHECK(test::default_config({"gait.ie_sign=-1"}).ie_sign == -1.0);
+  }
   SUBCASE("bad --set syntax") {
     check_mentions(input_error([] { models::parse_override("material.friction"); }),
                    {"material.friction", "key=value"});

@@ -1,5 +1,6 @@
 #include "analysis/run/wear_job.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -135,6 +136,7 @@ static wear::WearLawParams make_wear_law(const WearJob& j) {
 }
 
 void check_wear_job(const WearJob& j) {
+  constexpr long kMaxUpdates = 10000;
   make_wear_law(j);
   if (j.cycles <= 0) {
     throw InputError("--cycles = " + std::to_string(j.cycles) + " is not allowed (a positive "
@@ -156,6 +158,23 @@ void check_wear_job(const WearJob& j) {
       throw InputError("--schedule entry " + std::to_string(s) + " is not allowed (each "
                        "interval must be 1 to --cycles = " + std::to_string(j.cycles) + ")");
     }
+  }
+  // every update simulates a gait cycle and writes a depth map: refuse a run of millions of
+  // them (--update-every 1 at 5 Mc would write about a terabyte) before it starts
+  long updates = 0;
+  for (long done = 0; done < j.cycles && updates <= kMaxUpdates; ++updates) {
+    done += j.schedule.empty()
+                ? j.update_every
+                : j.schedule[std::min(static_cast<size_t>(updates), j.schedule.size() - 1)];
+  }
+  if (updates > kMaxUpdates) {
+    throw InputError("--cycles = " + std::to_string(j.cycles) + " with " +
+                     (j.schedule.empty() ? "--update-every = " + std::to_string(j.update_every)
+                                         : std::string("this --schedule")) +
+                     " needs more than " + std::to_string(kMaxUpdates) +
+                     " geometry updates (each simulates a gait cycle and writes a depth map); "
+                     "allowed: at most " + std::to_string(kMaxUpdates) + ", e.g. --update-every " +
+                     std::to_string((j.cycles + kMaxUpdates - 1) / kMaxUpdates) + " or more");
   }
   const double k = j.config.material.wear_factor_mm3_per_Nmm;
   if (!j.allow_any_wear_factor && (k < 1e-12 || k > 1e-6)) {

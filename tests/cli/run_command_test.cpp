@@ -109,6 +109,8 @@ TEST_CASE("kneesim run rejects bad input with one line and no summary") {
   TempDir tmp;
   fs::path bad_config = tmp.path / "negative_modulus.toml";
   std::ofstream(bad_config) << "[material]\nelastic_modulus_MPa = -5\n";
+  const fs::path measured_bad = tmp.path / "ap_only.csv";
+  std::ofstream(measured_bad) << "gait_pct,ap_mm\n0,1\n50,2\n";
   struct Case {
     const char* name;
     std::vector<std::string> args;
@@ -122,6 +124,12 @@ TEST_CASE("kneesim run rejects bad input with one line and no summary") {
        {"negative_modulus.toml", "elastic_modulus_MPa", "-5"}},
       {"friction outside [0, 1]", {"--set", "material.friction=1.5"}, {"material.friction", "1.5"}},
       {"bad --set syntax", {"--set", "no_equals_sign"}, {"no_equals_sign"}},
+      // CLI11 parse errors exit 2 too (issue 15: they were 104-114), with a readable range
+      {"--cycles 0", {"--cycles", "0"}, {"--cycles", "0", "1 to 1000000"}},
+      {"unknown flag", {"--no-such-flag"}, {"--no-such-flag"}},
+      // the measured file is checked before the simulation: nothing is written
+      {"measured file without ie_deg", {"--measured", measured_bad.string()},
+       {"ap_only.csv", "ie_deg", "gait_pct, ap_mm, ie_deg"}},
   };
   for (const Case& c : cases) {
     const std::string name = c.name;
@@ -131,12 +139,35 @@ TEST_CASE("kneesim run rejects bad input with one line and no summary") {
     args.insert(args.end(), c.args.begin(), c.args.end());
     const Result r = run_kneesim(args, tmp.path);
     INFO("stderr: " << r.err);
-    CHECK(r.exit_code != 0);
+    CHECK(r.exit_code == 2);
     CHECK(count_lines(r.err) == 1);
     for (const auto& m : c.mentions) CHECK_MESSAGE(r.err.find(m) != std::string::npos, m);
     CHECK_FALSE(fs::exists(out / "summary.json"));
     CHECK_FALSE(fs::exists(out / "kinematics.csv"));
   }
+}
+
+TEST_CASE("an unknown command is bad input: exit 2 naming it and the commands") {
+  TempDir tmp;
+  const Result r = run_kneesim({"bogus"}, tmp.path);
+  INFO("stderr: " << r.err);
+  CHECK(r.exit_code == 2);
+  CHECK(count_lines(r.err) == 1);
+  CHECK(r.err.find("'bogus' is not a kneesim command; the commands are run,") != std::string::npos);
+  CHECK(run_kneesim({"--help"}, tmp.path).exit_code == 0);
+}
+
+TEST_CASE("the documented 3-column measured CSV overlays a run") {
+  TempDir tmp;
+  const fs::path measured = tmp.path / "m.csv";
+  std::ofstream(measured) << "gait_pct,ap_mm,ie_deg\n0,1,2\n50,-1,4\n";
+  const fs::path out = tmp.path / "out";
+  const Result r = run_kneesim({"run", "--out", out.string(), "--quiet", "--cycles", "1", "--set",
+                                "implant.edge_length_mm=3", "--measured", measured.string()},
+                               tmp.path);
+  INFO("stderr: " << r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(split(slurp(out / "measured_kinematics.csv"), '\n').front() == "gait_pct,ap_mm,ie_deg");
 }
 
 TEST_CASE("a run that fails numerically leaves no complete-looking result") {
@@ -150,11 +181,19 @@ TEST_CASE("a run that fails numerically leaves no complete-looking result") {
                                 "material.elastic_modulus_MPa=2"},
                                tmp.path);
   INFO("stderr: " << r.err);
-  CHECK(r.exit_code != 0);
+  CHECK(r.exit_code == 1);  // numerical trouble, not bad input
   CHECK(count_lines(r.err) == 1);
   CHECK(r.err.find("runaway") != std::string::npos);
   CHECK_FALSE(fs::exists(out / "summary.json"));
   CHECK_FALSE(fs::exists(out / "kinematics.csv"));
   CHECK_FALSE(fs::exists(out / "kinematics.png"));
   CHECK(fs::exists(out / "summary.failed.json"));
+  // a good run into the same folder leaves no stale failure record beside its summary
+  const Result good = run_kneesim({"run", "--out", out.string(), "--quiet", "--cycles", "1",
+                                   "--set", "implant.edge_length_mm=3"},
+                                  tmp.path);
+  CHECK(good.exit_code == 0);
+  CHECK(fs::exists(out / "summary.json"));
+  CHECK_FALSE(fs::exists(out / "summary.failed.json"));
+  CHECK_FALSE(fs::exists(out / "kinematics.partial.csv"));
 }

@@ -112,12 +112,15 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--materials", args->materials, "comma-separated material names")
       ->delimiter(',')
       ->capture_default_str();
-  cmd->add_option("--cycles", args->cycles, "total gait cycles")->capture_default_str();
+  cmd->add_option("--cycles", args->cycles, "total gait cycles, 1 to 1e9")
+      ->capture_default_str()
+      ->check(finite_range(1, 1e9));
   cmd->add_option("--update-every", args->update_every, "cycles per geometry update")
       ->capture_default_str();
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--set", args->sets, "override a config key (repeatable)");
-  cmd->add_option("--jobs", args->jobs, "materials simulated at once (default: all cores)");
+  cmd->add_option("--jobs", args->jobs, "materials simulated at once (default: all cores)")
+      ->check(finite_range(1, 1024));
   cmd->add_flag("--quiet", args->quiet, "no per-material lines or table");
   cmd->callback([args] { run(*args); });
 }

@@ -251,14 +251,16 @@ void add_particles_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--pair", opts->pair,
                   "steel-steel|steel-brass|uhmwpe-cocr|peek-cocr|cfrpeek-cocr");
-  cmd->add_option("--load-N", opts->load_N, "normal load on the cylinder [N]");
+  cmd->add_option("--load-N", opts->load_N, "normal load on the cylinder [N]")
+      ->check(finite_range(1e-3, 1e6));
   cmd->add_option("--contact-pressure-MPa", opts->contact_pressure_MPa,
                   "knee pairs: the Hertz peak pressure the cylinder is sized to (default: the "
                   "mean peak pressure of `kneesim run` with the insert material)")
-      ->check(CLI::Range(0.1, 10000.0));
+      ->check(finite_range(0.1, 10000.0));
   cmd->add_option("--out", opts->out, "output folder")->capture_default_str();
   cmd->add_option("--max-iterations", opts->max_iterations, "wear-loop iteration limit (default: 40 blocks of two passes of the track, 640 "
-                  "iterations at the defaults; the loop stops earlier at the run-in steady state)");
+                  "iterations at the defaults; the loop stops earlier at the run-in steady state)")
+      ->check(finite_range(1, 1e6));
   cmd->add_flag("--no-film", opts->no_film, "drop transfer films (homogeneous model)");
   cmd->add_flag("--no-plots", opts->no_plots, "skip the PNG plots");
   cmd->callback([opts]() { run_particles(*opts); });

@@ -123,7 +123,9 @@ void add_wear_command(CLI::App& app) {
       "update, DIR/final_depth.csv, DIR/wear.png and DIR/depth_map.png; checkpoints after "
       "every update (DIR/wear.checkpoint) so that --resume continues a killed run.");
   cmd->add_option("config", args->config, "TOML config file")->check(CLI::ExistingFile);
-  cmd->add_option("--cycles", args->cycles, "total gait cycles")->capture_default_str();
+  cmd->add_option("--cycles", args->cycles, "total gait cycles, 1 to 1e9")
+      ->capture_default_str()
+      ->check(finite_range(1, 1e9));
   cmd->add_option("--update-every", args->update_every, "cycles per geometry update")
       ->capture_default_str();
   cmd->add_option("--schedule", args->schedule,

@@ -4,8 +4,30 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
 
 namespace kneesim::cli {
+
+// an option's value must be a finite number in [lo, hi] (CLI::Range lets nan through and
+// prints its bounds with all their digits); CLI11 prefixes the option's name to the message
+inline CLI::Validator finite_range(double lo, double hi) {
+  char range[80];
+  std::snprintf(range, sizeof range, "%.12g to %.12g", lo, hi);
+  const std::string allowed = range;
+  return CLI::Validator(
+      [lo, hi, allowed](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi) {
+          return "value '" + text + "' is not a number in the allowed range " + allowed;
+        }
+        return std::string();
+      },
+      "[" + allowed + "]");
+}
 
 void add_run_command(CLI::App& app);
 void add_particles_command(CLI::App& app);

@@ -141,8 +141,10 @@ TEST_CASE("kneesim wear: bad input is one line on stderr and exit 2, nothing wri
     const char* fragment;  // what the sentence must name
   };
   const std::vector<Case> cases = {
-      {{"--cycles", "0"}, "--cycles = 0"},
-      {{"--cycles", "-5"}, "--cycles = -5"},
+      {{"--cycles", "0"}, "--cycles: value '0' is not a number in the allowed range 1 to"},
+      {{"--cycles", "-5"}, "--cycles: value '-5'"},
+      {{"--cycles", "99999999999999999999"}, "allowed range 1 to 1000000000"},
+      {{"--update-every", "1"}, "more than 10000 geometry updates"},
       {{"--update-every", "0"}, "--update-every = 0"},
       {{"--update-every", "-250000"}, "--update-every = -250000"},
       {{"--cycles", "1000000", "--update-every", "2000000"}, "larger than the run"},

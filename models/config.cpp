@@ -248,6 +248,8 @@ Registry make_registry(Config& c) {
   r.text("gait.measured.length_unit", c.measured_length_unit);
   r.strings("gait.measured.channels", c.measured_channels);
   r.strings("gait.measured.compare", c.measured_compare);
+  r.number("gait.ap_force_shift_pct", c.ap_force_shift_pct, -50, 50);
+  r.number("gait.ie_torque_shift_pct", c.ie_torque_shift_pct, -50, 50);
 
   r.choice("solver.integrator", c.integrator, {"central_difference", "cvode"});
   r.number("solver.dt_safety", c.dt_safety, 0.05, 1.0);

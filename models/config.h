@@ -106,6 +106,10 @@ struct Config {
   std::vector<std::string> measured_channels;  // "target = expression": rig channels
   std::vector<std::string> measured_compare;   // measured outputs for comparison (diagnose)
 
+  // delays of the AP force and IE torque waveforms [% of the cycle] (load-timing candidates of
+  // the kinematics diagnosis, run forward)
+  double ap_force_shift_pct = 0.0, ie_torque_shift_pct = 0.0;
+
   // [solver]
   std::string integrator = "central_difference";  // "central_difference" | "cvode"
   double dt_safety = 0.8;                  // fraction of the estimated stability limit [-]

@@ -60,6 +60,8 @@ loads::Waveform make_gait(const Config& c, const loads::Waveform* measured_cycle
   conv.ap_sign = c.ap_sign;
   conv.ie_sign = c.ie_sign;
   gait = loads::apply_conventions(gait, conv);
+  gait = loads::delay_channels(gait, {{"ap_force_N", c.ap_force_shift_pct},
+                                      {"ie_torque_Nm", c.ie_torque_shift_pct}});
   if (!c.kinematics_file.empty()) {
     // the measured pose about the femoral reference point the engine uses (the FE axis centre)
     const Eigen::Vector3d p_FR_F =

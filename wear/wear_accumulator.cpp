@@ -58,6 +58,7 @@ std::vector<double> WearAccumulator::depth_per_cycle() const {
     switch (params_.law) {
       case WearLaw::kArchard:
       case WearLaw::kRunningIn:  // weighted by the cycles' running-in factor in the loop
+      case WearLaw::kIncubation:  // likewise, by the incubation factor
       case WearLaw::kPressureDependent:  // weighted per step in observe()
         break;
       case WearLaw::kCrossShear:  // needs the whole cycle's sliding path
@@ -70,9 +71,22 @@ std::vector<double> WearAccumulator::depth_per_cycle() const {
 }
 
 double effective_cycles(const WearLawParams& law, double n0, double n) {
-  if (law.law != WearLaw::kRunningIn || law.running_in_cycles <= 0.0) return n;
-  const double nr = law.running_in_cycles;
-  return n + law.running_in_excess * nr * (std::exp(-n0 / nr) - std::exp(-(n0 + n) / nr));
+  switch (law.law) {
+    case WearLaw::kRunningIn: {
+      if (law.running_in_cycles <= 0.0) return n;
+      const double nr = law.running_in_cycles;
+      return n + law.running_in_excess * nr * (std::exp(-n0 / nr) - std::exp(-(n0 + n) / nr));
+    }
+    case WearLaw::kIncubation: {
+      if (law.incubation_cycles <= 0.0) return n;
+      const double ni = law.incubation_cycles;
+      return n - ni * (std::exp(-n0 / ni) - std::exp(-(n0 + n) / ni));
+    }
+    case WearLaw::kArchard:
+    case WearLaw::kPressureDependent:
+    case WearLaw::kCrossShear: break;
+  }
+  return n;
 }
 
 }  // namespace kneesim::wear

@@ -17,6 +17,7 @@ enum class WearLaw {
   kPressureDependent,  // k = k_ref (p / p_ref)^-alpha (Mazzucco & Spector 2003)
   kCrossShear,       // k = k_ref * (1 + beta * CS) with the element's cross-shear ratio CS
   kRunningIn,        // dV/dN = k F S (1 + a exp(-N / N_r)): extra early wear (Hussin 2024)
+  kIncubation,       // dV/dN = k F S (1 - exp(-N / N_i)): the rate rises to steady state
 };
 
 struct WearLawParams {
@@ -28,10 +29,12 @@ struct WearLawParams {
   double beta = 0.0;          // cross-shear gain [-]
   double running_in_excess = 0.0;    // a, initial extra wear-rate ratio [-]
   double running_in_cycles = 2e5;    // N_r, running-in decay constant [cycles]
+  double incubation_cycles = 2e5;    // N_i, incubation time constant [cycles]
 };
 
-// the cycles [n0, n0 + n] weighted by the law's wear-rate factor: n, or for running-in
-// n + a N_r (exp(-n0 / N_r) - exp(-(n0 + n) / N_r)) [cycles]; the wear loop scales the depth of
+// the cycles [n0, n0 + n] weighted by the law's wear-rate factor: n, for running-in
+// n + a N_r (exp(-n0 / N_r) - exp(-(n0 + n) / N_r)), for incubation
+// n - N_i (exp(-n0 / N_i) - exp(-(n0 + n) / N_i)) [cycles]; the wear loop scales the depth of
 // one simulated cycle by it
 double effective_cycles(const WearLawParams& law, double n0, double n);
 

@@ -272,6 +272,7 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
       break;
     }
     result.records.push_back(r);
+    if (o.on_insert) o.on_insert(insert);
     if (!o.checkpoint.empty()) {
       Checkpoint c;
       c.identity = o.identity;

@@ -64,6 +64,9 @@ struct WearOptions {
   // more cycle on the final geometry): all records so far and the cumulative depth per
   // articular vertex
   std::function<void(const std::vector<UpdateRecord>&, const std::vector<double>&)> on_update;
+  // after every update: the receded insert (for forward models that follow the geometry,
+  // analysis/diagnosis/knee_wear_table.h)
+  std::function<void(const models::TriMesh&)> on_insert;
 };
 
 struct WearResult {

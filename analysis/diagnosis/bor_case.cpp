@@ -23,10 +23,12 @@ bor::BorWearLaw law_of(Effect e) {
     case Effect::running_in: return bor::BorWearLaw::running_in;
     case Effect::pressure_dependent_wear: return bor::BorWearLaw::pressure_dependent_wear;
     case Effect::creep: return bor::BorWearLaw::creep;
+    case Effect::incubation: return bor::BorWearLaw::incubation;
     case Effect::none:
     case Effect::cross_shear:
     case Effect::friction:
-    case Effect::restraint: break;
+    case Effect::restraint:
+    case Effect::load_convention: break;
   }
   return bor::BorWearLaw::archard;
 }
@@ -146,7 +148,7 @@ DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
   // wear is measured gravimetrically or by profilometry: an absolute error plus a part
   // proportional to the amount (fluid uptake, soak-control correction, calibration)
   c.noise_model = NoiseModel::proportional;
-  c.candidates = {Effect::running_in, Effect::pressure_dependent_wear};
+  c.candidates = {Effect::running_in, Effect::incubation, Effect::pressure_dependent_wear};
   if (has_depth) c.candidates.push_back(Effect::creep);
 
   // forward model: one table-driven simulation per load for the requested rows

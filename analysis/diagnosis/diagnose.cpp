@@ -35,6 +35,21 @@ std::vector<Fold> make_leave_one_out_folds(const std::vector<Measurement>& rows,
   return folds;
 }
 
+std::vector<int> find_params_at_bound(const std::vector<ParamSpec>& specs,
+                                      const Eigen::VectorXd& params) {
+  constexpr double kBoundFraction = 0.005;  // of the searched range, in the fitted space
+  std::vector<int> out;
+  for (size_t i = 0; i < specs.size() && static_cast<Eigen::Index>(i) < params.size(); ++i) {
+    const ParamSpec& s = specs[i];
+    const bool log = s.log_scale && s.lower > 0.0;
+    auto t = [log](double v) { return log ? std::log(std::max(v, 1e-300)) : v; };
+    const double lo = t(s.lower), hi = t(s.upper), v = t(params[static_cast<Eigen::Index>(i)]);
+    const double tol = kBoundFraction * (hi - lo);
+    if ((!s.lower_is_limit && v <= lo + tol) || v >= hi - tol) out.push_back(static_cast<int>(i));
+  }
+  return out;
+}
+
 std::vector<ParamSpec> case_effect_params(const DiagnosisCase& c, Effect effect) {
   if (effect == Effect::none) return {};
   return c.effect_params ? c.effect_params(effect) : effect_info(effect).params;
@@ -334,7 +349,7 @@ ModelFit fit_candidate(const Problem& pb, Effect e, const Eigen::VectorXd& calib
     const double log_w = log_w_sum(pb, w);
     Noise at{w, 0.0};
     FitResult fit = fit_clusters(pb, pb.y, e, m.specs, start, pb.clusters, at,
-                                 opt.multi_start && it == 0);
+                                 (opt.multi_start || c.multi_start_effects.count(e)) && it == 0);
     double fit_aicc = aicc(fit.rss, 0.0, log_w, n, k);
     double fit_rho = 0.0;
     if (pb.random_effect) {
@@ -452,6 +467,38 @@ ModelFit practitioner_baseline(const Problem& pb) {
   return m;
 }
 
+// the trivial predictor: each quantity's measured mean (held out: over the fold's training
+// rows); no parameters are fitted, so it has no AICc
+ModelFit trivial_predictor(const Problem& pb) {
+  const DiagnosisCase& c = pb.c;
+  const auto n = static_cast<Eigen::Index>(c.measured.rows.size());
+  auto means = [&](const std::vector<int>& rows) {
+    std::vector<double> sum(static_cast<size_t>(pb.quantities()), 0.0), count(sum.size(), 0.0);
+    for (int i : rows) {
+      sum[static_cast<size_t>(pb.quantity[static_cast<size_t>(i)])] += pb.y[i];
+      count[static_cast<size_t>(pb.quantity[static_cast<size_t>(i)])] += 1.0;
+    }
+    for (size_t q = 0; q < sum.size(); ++q) sum[q] = count[q] > 0.0 ? sum[q] / count[q] : 0.0;
+    return sum;
+  };
+  ModelFit m;
+  m.effect = Effect::none;
+  m.model = "the measured mean of each quantity (no model)";
+  m.aicc = NAN;
+  const auto all = means(all_rows(static_cast<size_t>(n)));
+  m.predictions.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) m.predictions[i] = all[static_cast<size_t>(pb.quantity[static_cast<size_t>(i)])];
+  m.rss = (m.predictions - pb.y).cwiseProduct(pb.unit).squaredNorm();
+  m.rmse = score(pb, m.predictions);
+  m.heldout_predictions = Eigen::VectorXd::Constant(n, NAN);
+  for (const Fold& f : c.folds) {
+    const auto train = means(f.train);
+    for (int i : f.test) m.heldout_predictions[i] = train[static_cast<size_t>(pb.quantity[static_cast<size_t>(i)])];
+  }
+  m.heldout_rmse = score(pb, m.heldout_predictions);
+  return m;
+}
+
 // bootstrap of the chosen fit: specimens resampled within each condition when specimens are
 // given (their scatter dominates), otherwise residuals resampled within each quantity
 void bootstrap(const Problem& pb, ModelFit& m, const Noise& noise, const DiagnosisOptions& opt) {
@@ -561,6 +608,7 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   }
 
   res.baseline = practitioner_baseline(pb);
+  res.trivial = trivial_predictor(pb);
   // random-effect direction: d prediction / d ln(specimen parameter) (for depth this is not
   // the depth itself: depth grows less than proportionally with volume)
   {
@@ -606,11 +654,13 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   // selection against "none"
   const ModelFit& none = res.candidates.front();
   res.selected = 0;
+  for (auto& m : res.candidates) m.at_bound = find_params_at_bound(m.specs, m.params);
   for (size_t i = 1; i < res.candidates.size(); ++i) {
-    const ModelFit& m = res.candidates[i];
+    ModelFit& m = res.candidates[i];
     const bool ic_ok = m.aicc < none.aicc - options.ic_threshold;
     const bool heldout_ok = m.heldout_rmse < (1.0 - options.heldout_threshold) * none.heldout_rmse;
-    if (ic_ok && heldout_ok &&
+    m.passes_gates = ic_ok && heldout_ok;
+    if (m.passes_gates && m.at_bound.empty() &&
         (res.selected == 0 || m.heldout_rmse < res.extended().heldout_rmse)) {
       res.selected = static_cast<int>(i);
     }
@@ -620,6 +670,9 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   res.gain = (res.baseline.heldout_rmse > 0.0)
                  ? 1.0 - res.extended().heldout_rmse / res.baseline.heldout_rmse
                  : 0.0;
+  res.gain_vs_trivial = (res.trivial.heldout_rmse > 0.0)
+                            ? 1.0 - res.extended().heldout_rmse / res.trivial.heldout_rmse
+                            : 0.0;
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }

@@ -18,9 +18,18 @@
 //
 // Selection rule: a candidate is supported when its AICc is below the "none" candidate's by
 // more than ic_threshold AND its held-out RMSE is below (1 - heldout_threshold) times the
-// "none" candidate's; among supported candidates the lowest held-out RMSE wins. Both gates
-// are needed: AICc alone rewards in-sample fits of specimen scatter, held-out error alone is
-// noisy with few folds.
+// "none" candidate's AND none of its parameters ended at a search bound; among supported
+// candidates the lowest held-out RMSE wins. Both gates are needed: AICc alone rewards
+// in-sample fits of specimen scatter, held-out error alone is noisy with few folds. The bound
+// rule: a fit that ends at a search bound wants a value outside the searched (physically
+// plausible) range, so its parameter is not an estimate and the effect is not a finding (the
+// first DM kinematics diagnosis named `restraint` at the stiffness bound x20: a nearly still
+// model whose error equalled that of the measured mean). Such a candidate is reported with
+// the bound and never named.
+//
+// Trivial predictor: the measured mean of each quantity (held out: the mean over the fold's
+// training rows). Every report gives the gain against it too, so a gain that a flat line
+// achieves is visible as such.
 #pragma once
 
 #include <Eigen/Core>
@@ -53,6 +62,8 @@ struct ModelFit {
   double heldout_rmse = 0.0;           // held-out [rmse_unit]
   double aicc = 0.0;                   // corrected Akaike information criterion [-]
   std::vector<double> noise_sd;        // profiled noise sd per quantity [quantity unit]
+  std::vector<int> at_bound;           // indices into specs of parameters at a search bound
+  bool passes_gates = false;           // AICc and held-out gates passed (bound rule aside)
 };
 
 struct DiagnosisResult {
@@ -61,13 +72,21 @@ struct DiagnosisResult {
   NoiseModel noise_model = NoiseModel::per_quantity;  // the residual model used
   Eigen::VectorXd weights;          // unit conversion into rmse_unit per measurement [-]
   ModelFit baseline;                // practitioner's calibration, not refitted
+  ModelFit trivial;                 // the measured mean of each quantity (no model at all)
   std::vector<ModelFit> candidates; // "none" first, then the case's candidates
   int selected = 0;                 // index into candidates
   double gain = 0.0;                // 1 - heldout extended / heldout baseline [-]
+  double gain_vs_trivial = 0.0;     // 1 - heldout extended / heldout trivial [-]
   double seconds = 0.0;             // wall time [s]
   const ModelFit& extended() const { return candidates[static_cast<size_t>(selected)]; }
   Effect effect() const { return extended().effect; }
 };
+
+// Indices of the parameters that ended at a search bound: within 0.5 % of the searched range
+// of the bound, measured in the fitted space (log for log-scale parameters); a lower bound
+// marked lower_is_limit is a physical limit and does not count.
+std::vector<int> find_params_at_bound(const std::vector<ParamSpec>& specs,
+                                      const Eigen::VectorXd& params);
 
 // runs the diagnosis; throws InputError when the data have fewer measurements than a
 // candidate needs (n > parameters + 2 for AICc)

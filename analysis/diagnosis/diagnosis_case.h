@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,9 @@ struct DiagnosisCase {
   std::string split_rule;              // e.g. "leave-one-specimen-out"
   std::vector<Fold> folds;             // the held-out split rule, applied
   FitControl fit_control;              // iteration cap of every fit (simulation-based cases)
+  // effects fitted multi-start even when the options turn multi-start off: discrete
+  // alternatives a local fit cannot cross to (the sign of a load)
+  std::set<Effect> multi_start_effects;
   NoiseModel noise_model = NoiseModel::per_quantity;  // see NoiseModel
 
   // effect parameter specs for this case (bounds, starts); default: effect_info(e).params

@@ -20,7 +20,7 @@ const std::vector<EffectInfo>& library() {
        {{"running_in_excess", "initial extra wear-rate ratio a [-]", 1e-3, 1e3, 2.0, true,
          {0.5, 5.0}},
         {"running_in_cycles", "running-in decay constant N_r [cycles]", 1e3, 3e5, 15000.0, true,
-         {4000.0, 50000.0}}}},
+         {4000.0, 50000.0}, true}}},
       {Effect::pressure_dependent_wear, "pressure_dependent_wear",
        "UHMWPE's wear factor falls as the nominal contact pressure rises (Mazzucco & Spector "
        "2003); Abdelgaied 2011 proposed wear proportional to contact area instead of load, "
@@ -36,7 +36,7 @@ const std::vector<EffectInfo>& library() {
        "k = k_linear (1 + g CS), CS = cross-shear ratio of the local sliding path",
        DataNeed::kinematic_conditions,
        {{"cross_shear_gain", "gain g of k on the cross-shear ratio [-]", 0.0, 50.0, 3.0, false,
-         {}}}},
+         {}, true}}},
       {Effect::creep, "creep",
        "Early penetration of UHMWPE is largely viscoelastic-plastic creep, not wear: depth "
        "grows without volume loss and saturates in time (Zhao 2008), so a wear-only model "
@@ -46,7 +46,18 @@ const std::vector<EffectInfo>& library() {
        {{"creep_ratio", "saturated creep over elastic penetration phi [-]", 1e-3, 20.0, 0.5,
          true, {2.0}},
         {"creep_time_s", "creep time constant tau [s]", 60.0, 1e6, 3600.0, true,
-         {600.0, 20000.0}}}},
+         {600.0, 20000.0}, true}}},
+      {Effect::incubation, "incubation",
+       "Steady wear of UHMWPE needs an incubation period: the surface must accumulate plastic "
+       "strain (ratcheting, orientation) before debris detaches, and early gravimetric wear is "
+       "masked by fluid uptake where the soak control does not remove it fully; the measured "
+       "volume then lags the steady-state line by an amount proportional to the load "
+       "(incubation) or independent of it (uptake). The law here is the load-proportional one: "
+       "the wear rate rises from zero to the steady rate with time constant N_i.",
+       "dV/dN = k F S (1 - exp(-N / N_i)); V lags k F S N by k F S N_i after a few N_i",
+       DataNeed::none,
+       {{"incubation_cycles", "incubation time constant N_i [cycles]", 1e2, 5e5, 20000.0, true,
+         {3000.0, 100000.0}, true}}},
       {Effect::friction, "friction",
        "Force-controlled kinematics follow the friction at the articulation and the rig's "
        "restraint; a friction coefficient different from the assumed one changes AP and IE "
@@ -54,7 +65,7 @@ const std::vector<EffectInfo>& library() {
        "mu replaced by a fitted friction coefficient (kinematics and Sarkar factor)",
        DataNeed::kinematics,
        {{"friction_coefficient", "friction coefficient mu [-]", 0.0, 0.5, 0.07, false,
-         {0.02, 0.15}}}},
+         {0.02, 0.15}, true}}},
       {Effect::restraint, "restraint",
        "Force-controlled models miss the kinematics of the rig or the patient because the "
        "restraint they assume is not the one acting: the simulator's springs, or a patient's "
@@ -66,7 +77,24 @@ const std::vector<EffectInfo>& library() {
        {{"restraint_stiffness_scale", "scale s of every restraint stiffness [-]", 0.05, 20.0,
          1.0, true, {0.3, 3.0}},
         {"restraint_gap_mm", "AP laxity gap g of the restraint springs [mm]", 0.0, 10.0, 3.0,
-         false, {}}}},
+         false, {}, true}}},
+      {Effect::load_convention, "load_convention",
+       "A force-controlled model moves as its loads drive it: an AP force or IE torque applied "
+       "with the opposite sign (published work disagrees on the ISO 14243 directions, Wang "
+       "2018; a frame turned between the load file and the rig), at another magnitude, or "
+       "out of phase with the flexion it is combined with (a load pattern from another gait "
+       "than the measured one) moves the tibia the wrong way or at the wrong time. A wrong "
+       "sign is the first thing to rule out.",
+       "AP force x s_AP delayed by d_AP; IE torque x s_IE delayed by d_IE (signs included)",
+       DataNeed::kinematics,
+       {{"ap_force_scale", "factor on the AP force waveform, sign included [-]", -3.0, 3.0, 1.0,
+         false, {-1.0}},
+        {"ap_force_shift_pct", "delay of the AP force waveform [% of the cycle]", -25.0, 25.0,
+         0.0, false, {}},
+        {"ie_torque_scale", "factor on the IE torque waveform, sign included [-]", -3.0, 3.0,
+         1.0, false, {}},
+        {"ie_torque_shift_pct", "delay of the IE torque waveform [% of the cycle]", -25.0, 25.0,
+         0.0, false, {}}}},
   };
   return lib;
 }
@@ -84,7 +112,8 @@ const std::vector<Effect>& all_effects() {
   static const std::vector<Effect> all = {Effect::none,        Effect::running_in,
                                           Effect::pressure_dependent_wear,
                                           Effect::cross_shear, Effect::creep,
-                                          Effect::friction, Effect::restraint};
+                                          Effect::incubation, Effect::friction,
+                                          Effect::restraint, Effect::load_convention};
   return all;
 }
 

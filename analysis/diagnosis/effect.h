@@ -19,8 +19,10 @@ enum class Effect {
   pressure_dependent_wear,  // k = k_ref (p / p_ref)^-alpha (alpha = 1: contact-area law)
   cross_shear,              // k rising with the cross-shear ratio of the sliding path
   creep,                    // penetration without volume loss, decaying in time
+  incubation,               // the wear rate rises from zero to the steady rate (early deficit)
   friction,                 // a different friction coefficient, visible in kinematics
   restraint,                // a different soft-tissue restraint (stiffness, gap), in kinematics
+  load_convention,          // the applied AP force / IE torque differ in sign, scale or timing
 };
 
 // what an effect needs to be identifiable
@@ -40,6 +42,11 @@ struct ParamSpec {
   double initial = 0.0;        // default start, I/O units
   bool log_scale = false;      // fitted in log space (positive, multiplicative parameters)
   std::vector<double> starts;  // extra starts for multi-start fits, I/O units
+  // the lower bound is a physical limit (a laxity gap or a friction coefficient of 0) or the
+  // data's resolution limit (a time constant far shorter than the first measurement: every
+  // shorter value fits the same), not a search bound: a fit may end there legitimately
+  // (diagnose.h, find_params_at_bound); an upper bound is always a search bound
+  bool lower_is_limit = false;
 };
 
 struct EffectInfo {

@@ -96,6 +96,11 @@ DiagnosisCase make_kinematics_case(MeasuredData data, std::shared_ptr<Kinematics
   c.candidates = {Effect::friction};
   bool has_restraint = sim->config().restraint != "none";
   if (has_restraint) c.candidates.push_back(Effect::restraint);
+  c.candidates.push_back(Effect::load_convention);
+  // the sign of the AP force (the open question of issue 14): starts at +1 and -1, since a
+  // local fit does not cross zero; the IE torque starts at +1 only (two starts, not four: each
+  // start costs up to 40 simulations)
+  c.multi_start_effects = {Effect::load_convention};
   c.effect_params = [](Effect e) {
     auto specs = effect_info(e).params;
     // above 0.3 the regularized Coulomb slope approaches the explicit stability limit
@@ -158,6 +163,9 @@ DiagnosisCase make_kinematics_case(MeasuredData data, std::shared_ptr<Kinematics
   };
   c.model_notes[Effect::friction] =
       "forward: kneesim run CONFIG --set contact.friction=MU";
+  c.model_notes[Effect::load_convention] =
+      "forward: kneesim run CONFIG --set gait.ap_sign=-1 --set gait.ap_force_scale=|s| --set "
+      "gait.ap_force_shift_pct=d ... (the command prints the exact list)";
   c.model_notes[Effect::restraint] =
       "forward: kneesim run CONFIG --set rig.restraint.k_..._N_per_mm=s k --set "
       "rig.restraint.gap_mm=g (the command prints the exact list)";

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "engine/simulate.h"
+#include "loads/iso14243/conventions.h"
 
 namespace kneesim::diagnosis {
 namespace {
@@ -37,13 +38,24 @@ KinematicsSimulator::KinematicsSimulator(const models::Config& config)
     : config_(config), built_(models::build_model(config)) {
   restraint0_ = built_.model.restraint;
   friction0_ = built_.model.contact.friction;
+  gait0_ = built_.model.gait;
+  for (int c = 0; c < 2; ++c) {
+    for (int d = 0; d < engine::kNumDof; ++d) {
+      const engine::DofModel& dof = built_.model.carriages[static_cast<size_t>(c)].dofs[static_cast<size_t>(d)];
+      if (dof.mode != engine::DofMode::kForce || dof.channel < 0) continue;
+      const std::string& name = gait0_.channel_name(dof.channel);
+      if (name == "ap_force_N") ap_force_dofs_.push_back({c, d, dof.scale});
+      if (name == "ie_torque_Nm") ie_torque_dofs_.push_back({c, d, dof.scale});
+    }
+  }
   build_seconds_ = built_.build_seconds;
 }
 
 std::shared_ptr<const KinematicsTrace> KinematicsSimulator::run(Effect effect,
                                                                 const Eigen::VectorXd& params) {
   std::vector<double> key = {static_cast<double>(effect)};
-  if (effect == Effect::friction || effect == Effect::restraint) {
+  if (effect == Effect::friction || effect == Effect::restraint ||
+      effect == Effect::load_convention) {
     key.insert(key.end(), params.data(), params.data() + params.size());
   }
   if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
@@ -52,6 +64,23 @@ std::shared_ptr<const KinematicsTrace> KinematicsSimulator::run(Effect effect,
   engine::Model& model = built_.model;
   model.contact.friction = friction0_;
   model.restraint = restraint0_;
+  model.gait = gait0_;
+  auto set_scale = [&model](const std::vector<ForceDof>& dofs, double factor) {
+    for (const ForceDof& f : dofs) {
+      model.carriages[static_cast<size_t>(f.carriage)].dofs[static_cast<size_t>(f.dof)].scale =
+          f.scale * factor;
+    }
+  };
+  set_scale(ap_force_dofs_, 1.0);
+  set_scale(ie_torque_dofs_, 1.0);
+  if (effect == Effect::load_convention) {
+    // what build_model makes of gait.ap_sign/ap_force_scale/ap_force_shift_pct and the IE
+    // equivalents: the channel scaled on its DOF, the waveform delayed
+    set_scale(ap_force_dofs_, params[0]);
+    set_scale(ie_torque_dofs_, params[2]);
+    model.gait = loads::delay_channels(gait0_, {{"ap_force_N", params[1]},
+                                                {"ie_torque_Nm", params[3]}});
+  }
   if (effect == Effect::friction) model.contact.friction = params[0];
   if (effect == Effect::restraint) {
     for (engine::RestraintSpring& s : model.restraint) {
@@ -97,11 +126,23 @@ std::string KinematicsSimulator::equivalent_sets(Effect effect, const Eigen::Vec
       scaled("k_ie_Nm_per_deg", c.k_ie_Nm_per_deg);
       return s;
     }
+    case Effect::load_convention: {
+      // gait.ap_sign flips the file's AP channels; the scale keys take magnitudes
+      std::string s;
+      if (p[0] < 0.0) s += "--set gait.ap_sign=-1 ";
+      s += "--set gait.ap_force_scale=" + fmt("%.4g", std::abs(p[0])) +
+           " --set gait.ap_force_shift_pct=" + fmt("%.4g", p[1]);
+      if (p[2] < 0.0) s += " --set gait.ie_sign=-1";
+      s += " --set gait.ie_torque_scale=" + fmt("%.4g", std::abs(p[2])) +
+           " --set gait.ie_torque_shift_pct=" + fmt("%.4g", p[3]);
+      return s;
+    }
     case Effect::none:
     case Effect::running_in:
     case Effect::pressure_dependent_wear:
     case Effect::cross_shear:
-    case Effect::creep: break;
+    case Effect::creep:
+    case Effect::incubation: break;
   }
   return "";
 }

@@ -3,6 +3,9 @@
 //   friction   contact.friction = mu                       (`kneesim run --set contact.friction=mu`)
 //   restraint  every restraint stiffness scaled by s, the AP spring gap set to g
 //              (`kneesim run --set rig.restraint.k_anterior_N_per_mm=... gap_mm=g ...`)
+//   load_convention  the AP force and IE torque scaled (sign included) and delayed
+//              (`kneesim run --set gait.ap_sign=-1 --set gait.ap_force_scale=|s|
+//               --set gait.ap_force_shift_pct=d ...`)
 // Both are exactly what build_model makes of the equivalent config keys (the restraint is
 // linear in its stiffnesses), so the Model is built once (the femoral distance field of a mesh
 // implant takes seconds) and only these fields change between evaluations; equivalent_sets()
@@ -55,6 +58,12 @@ class KinematicsSimulator {
   models::BuiltModel built_;
   std::vector<engine::RestraintSpring> restraint0_;  // as built
   double friction0_ = 0.07;                          // as built [-]
+  loads::Waveform gait0_;                            // as built
+  struct ForceDof {
+    int carriage = 0, dof = 0;  // indices into Model::carriages and its dofs
+    double scale = 1.0;         // as built [SI per channel unit]
+  };
+  std::vector<ForceDof> ap_force_dofs_, ie_torque_dofs_;  // DOFs driven by those channels
   std::map<std::vector<double>, std::shared_ptr<const KinematicsTrace>> cache_;
   int simulations_ = 0;
   double seconds_ = 0.0;

@@ -85,10 +85,20 @@ std::map<std::string, models::Config> knee_condition_configs(const MeasuredData&
   return out;
 }
 
-KneeWearTables make_knee_wear_tables(const std::map<std::string, models::Config>& configs) {
+KneeWearTables make_knee_wear_tables(const std::map<std::string, models::Config>& configs,
+                                     const MeasuredData& data, int geometry_states) {
+  std::map<std::string, double> max_volume;  // [m^3]
+  for (const auto& m : data.rows) {
+    if (m.quantity == "volume_mm3") max_volume[m.group] = std::max(max_volume[m.group], m.value * 1e-9);
+  }
   KneeWearTables tables;
   for (const auto& [name, config] : configs) {
-    tables[name] = std::make_shared<const KneeWearTable>(name, config);
+    KneeGeometryPath path;
+    if (geometry_states > 0 && max_volume[name] > 0.0) {
+      path.states = geometry_states;
+      path.target_volume = kPathVolumeMargin * max_volume[name];
+    }
+    tables[name] = std::make_shared<const KneeWearTable>(name, config, path);
   }
   return tables;
 }
@@ -98,6 +108,9 @@ std::vector<ParamSpec> knee_wear_effect_params(Effect effect) {
   for (auto& s : specs) {
     // a knee simulator runs in for 0.1-1 Mc, and creeps over days (1 Hz: 1 Mc = 11.6 days)
     if (s.name == "running_in_cycles") {
+      s.lower = 1e4, s.upper = 5e6, s.initial = 2e5, s.starts = {5e4, 1e6};
+    }
+    if (s.name == "incubation_cycles") {
       s.lower = 1e4, s.upper = 5e6, s.initial = 2e5, s.starts = {5e4, 1e6};
     }
     if (s.name == "creep_time_s") {
@@ -124,9 +137,11 @@ KneeWearParams knee_wear_params(Effect effect, const Eigen::VectorXd& b, const E
       p.creep_ratio = ep[0];
       p.creep_time = ep[1];
       break;
+    case Effect::incubation: p.incubation_cycles = ep[0]; break;
     case Effect::none:
     case Effect::friction:
-    case Effect::restraint: break;
+    case Effect::restraint:
+    case Effect::load_convention: break;
   }
   return p;
 }
@@ -170,11 +185,18 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
   for (const auto& g : conditions) model->tables[g] = tables.at(g);
   model->reference_pressure = knee_reference_pressure(tables, c.measured, options);
 
+  int states = tables.at(cal)->geometry_states();
+  for (const auto& g : conditions) states = std::min(states, tables.at(g)->geometry_states());
   c.baseline_model =
-      "Sarkar-corrected Archard V = k sqrt(1 + 3 mu^2) sum(A p ds) N, wear linear in cycles on "
-      "the pristine insert (one simulated cycle per condition; the geometry update of `kneesim "
-      "wear` is neglected), k from the steady-state slope (cycles >= " +
-      fmt("%.0f", options.steady_state_from) + ") of condition " + cal;
+      "Sarkar-corrected Archard V = k sqrt(1 + 3 mu^2) sum(A p ds) N, " +
+      (states > 1
+           ? "following the geometry update (each condition's Archard wear loop recorded at " +
+                 std::to_string(states) + " geometry states, pristine included, rates "
+                 "interpolated in worn volume)"
+           : std::string("wear linear in cycles on the pristine insert (one simulated cycle per "
+                         "condition; the geometry update of `kneesim wear` is neglected)")) +
+      ", k from the steady-state slope (cycles >= " + fmt("%.0f", options.steady_state_from) +
+      ") of condition " + cal;
   c.baseline_params = {{"k_mm3_per_Nmm", "wear factor k [mm^3/(N mm)]", 1e-13, 1e-5, 2.643e-10,
                         true, {}}};
 
@@ -188,7 +210,7 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
   // wear is measured gravimetrically or by profilometry: an absolute error plus a part
   // proportional to the amount (fluid uptake, soak-control correction, calibration)
   c.noise_model = NoiseModel::proportional;
-  c.candidates = {Effect::running_in};
+  c.candidates = {Effect::running_in, Effect::incubation};
   if (p_hi > 1.05 * p_lo) c.candidates.push_back(Effect::pressure_dependent_wear);
   if (cs_hi > 1.10 * cs_lo && cs_hi > 0.0) c.candidates.push_back(Effect::cross_shear);
   if (has_depth) c.candidates.push_back(Effect::creep);
@@ -234,7 +256,8 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
     }
     KneeWearParams unit;
     unit.k = 1e-6;  // 1 mm^3/(N mm)
-    const double per_k = shared->tables.at(cond)->volume(unit, 1.0) * 1e9;  // mm^3 per cycle
+    // mm^3 per cycle on the pristine insert at k = 1 mm^3/(N mm)
+    const double per_k = shared->tables.at(cond)->rates(unit).volume[0] * 1e9;
     const double k = per_k > 0.0 ? slope_of(xs, ys) / per_k : 2.643e-10;
     return Eigen::VectorXd::Constant(1, std::clamp(k, 1e-13, 1e-5)).eval();
   };
@@ -283,6 +306,7 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
       "CS per element from the frictional-work tensor of the cycle (Kang 2008; work-weighted "
       "mean CS: " + shears + "); forward: kneesim wear --wear-law cross_shear";
   c.model_notes[Effect::running_in] = "running-in as in the block-on-ring case, on every condition";
+  c.model_notes[Effect::incubation] = "incubation as in the block-on-ring case, on every condition";
   c.model_notes[Effect::creep] =
       "delta_el = largest elastic penetration of each condition's cycle, t = cycles x period";
   return c;

@@ -42,8 +42,14 @@ std::map<std::string, models::Config> knee_condition_configs(const MeasuredData&
                                                              const std::string& config_path,
                                                              const std::vector<std::string>& sets);
 
-// simulates every condition once (the forward tables)
-KneeWearTables make_knee_wear_tables(const std::map<std::string, models::Config>& configs);
+// simulates every condition once (the forward tables, pristine only), or, with
+// geometry_states > 0, also along its Archard wear loop to kPathVolumeMargin times the largest
+// volume `data` holds for it (knee_wear_table.h; k_ref from the library default)
+KneeWearTables make_knee_wear_tables(const std::map<std::string, models::Config>& configs,
+                                     const MeasuredData& data = {}, int geometry_states = 0);
+
+// how far the geometry path reaches beyond the largest measured volume of a condition [-]
+constexpr double kPathVolumeMargin = 1.5;
 
 // the case over precomputed tables (one per condition of the data)
 DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& tables,

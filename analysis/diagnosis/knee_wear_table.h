@@ -1,11 +1,21 @@
-// The forward model of the knee-wear diagnosis: one simulated gait cycle per condition on the
-// pristine insert, recorded so that the wear of every effect of the library is a cheap sum.
+// The forward model of the knee-wear diagnosis: simulated gait cycles per condition, recorded so
+// that the wear of every effect of the library is a cheap sum.
 //
-// Approximation (stated in every report): wear is linear in cycles on the pristine geometry,
-// V(N) = N V_1 with V_1 the volume of one observed cycle (after one settling cycle). The full
-// knee wear loop (wear/wear_loop.h, `kneesim wear`) recedes the insert every update, which
-// makes it more conforming and lowers the pressure; `kneesim diagnose knee-wear` checks the
-// approximation against that loop for the calibration condition and prints the difference.
+// Two forms (issue 14 item 6):
+//  - pristine only (one state): wear linear in cycles on the pristine geometry,
+//    V(N) = N V_1 with V_1 the volume of one observed cycle (after one settling cycle);
+//  - following the geometry update (several states): the condition's own Archard wear loop
+//    (wear/wear_loop.h, what `kneesim wear` runs) at a reference k is run once, and one cycle
+//    is recorded on the insert after each of its updates. The geometry is indexed by the worn
+//    volume V_s the loop had reached (not by cycles), so any k and any law can walk the same
+//    path: the per-cycle volume rate r_s(law) of each state is interpolated linearly in V, and
+//    dV/dN_eff = r(V) is integrated in closed form (on a segment with r = r_a + m (V - V_a):
+//    N = ln(r / r_a) / m); vertex depth rates are interpolated the same way. Why: under a
+//    pressure law the worn insert conforms, the pressure falls and the wear rate rises with
+//    cycles, which the pristine-linear form cannot follow (a hidden pressure law in loop-made
+//    data was named `none`). The approximation left: the path's geometry is Archard's at each
+//    worn volume (a law that redistributes wear reaches a somewhat different geometry at the
+//    same volume); beyond the last state the last rates hold.
 //
 // What is recorded per articular element (only elements that were in contact are kept):
 //  - sum of p ds over the cycle binned by ln p (kBins bins from 0.01 to 300 MPa), with the
@@ -16,7 +26,7 @@
 //    wear::WearAccumulator::cross_shear_ratio, the same code `kneesim wear --wear-law
 //    cross_shear` uses, so k (1 + g CS_e) is the same extension;
 //  - the area-weighted spreading to vertices (wear/geometry_update.h) as a sparse matrix,
-//    for the maximum linear depth.
+//    for the maximum depth.
 // Rejected: storing every (step, element) sample (10^6 per cycle), because every prediction
 // would then loop over them; the binned table is 100 times smaller and exact for archard and
 // cross-shear.
@@ -28,6 +38,7 @@
 #include <vector>
 
 #include "analysis/diagnosis/effect.h"
+#include "engine/model.h"
 #include "models/config.h"
 
 namespace kneesim::diagnosis {
@@ -43,20 +54,46 @@ struct KneeWearParams {
   double cross_shear_gain = 0.0;   // g in k (1 + g CS) [-]
   double creep_ratio = 0.0;        // phi, saturated creep over elastic penetration [-]
   double creep_time = 1e5;         // tau, creep time constant [s]
+  double incubation_cycles = 2e5;  // N_i, incubation time constant [cycles]
+};
+
+// the geometry path of a condition: its Archard wear loop at k_ref until the worn volume
+// reaches target_volume, with `states` updates at cumulative cycle fractions (j / states)^1.5
+// (denser early, where the conformity changes fastest); one geometry state after each
+struct KneeGeometryPath {
+  int states = 0;                 // worn geometry states; 0 = pristine only [-]
+  double target_volume = 0.0;     // worn volume the path reaches [m^3]
+  double k_ref = 2.643e-16;       // wear factor of the loop [m^2/N] (sets only the loop's
+                                  // cycle counts: the states are indexed by volume)
+};
+
+// one cycle simulated on one insert geometry
+struct KneeCycleRecord {
+  double volume = 0.0;            // worn volume of the geometry (loop's depth integral) [m^3]
+  double max_penetration = 0.0;   // largest elastic penetration of the cycle [m]
+  Eigen::VectorXd area;           // kept element areas [m^2]
+  Eigen::VectorXd cross_shear;    // kept element CS [-]
+  Eigen::MatrixXd pds;            // kept elements x bins: sum p ds [Pa m]
+  Eigen::MatrixXd lnp;            // kept elements x bins: mean ln(p / 1 Pa) of the bin [-]
+  Eigen::SparseMatrix<double> spread;  // vertices x kept elements
 };
 
 class KneeWearTable {
  public:
   static constexpr int kBins = 48;
 
-  // simulates `config` (one settling and one observed cycle) and records the cycle; throws
-  // std::runtime_error when the simulation stops on numerical trouble
-  KneeWearTable(const std::string& name, const models::Config& config);
+  // simulates `config` (one settling and one observed cycle) and records the cycle; with a
+  // path, also runs the Archard wear loop and records a cycle after each of its updates;
+  // throws std::runtime_error when a simulation stops on numerical trouble
+  KneeWearTable(const std::string& name, const models::Config& config,
+                const KneeGeometryPath& path = {});
 
-  // per-cycle figures of a law: everything a prediction needs (computed once per condition)
+  // per-cycle figures of a law at every geometry state: everything a prediction needs
+  // (computed once per condition and parameter set)
   struct Rates {
-    double volume = 0.0;     // volume per cycle [m^3]
-    double max_depth = 0.0;  // largest vertex depth per cycle [m]
+    Eigen::VectorXd volume;      // volume per cycle, per state [m^3]
+    Eigen::MatrixXd vertex;      // vertex depth per cycle, vertices x states [m]
+    double max_depth = 0.0;      // largest vertex depth per cycle, pristine state [m]
   };
   Rates rates(const KneeWearParams& p) const;
   // volume after `cycles` [m^3] and maximum linear depth [m] (creep included for creep)
@@ -68,9 +105,11 @@ class KneeWearTable {
   }
 
   const std::string& name() const { return name_; }
+  int geometry_states() const { return static_cast<int>(states_.size()); }
+  double state_volume(int s) const { return states_[static_cast<size_t>(s)].volume; }  // [m^3]
   double friction() const { return friction_; }             // [-]
   double period() const { return period_; }                 // [s]
-  double max_penetration() const { return max_penetration_; }  // elastic, over the cycle [m]
+  double max_penetration() const { return states_.front().max_penetration; }  // elastic [m]
   double work() const { return work_; }                     // sum A p ds over the cycle [J]
   // work-weighted geometric mean contact pressure [Pa]
   double mean_pressure() const { return mean_pressure_; }
@@ -80,24 +119,23 @@ class KneeWearTable {
 
  private:
   // element depth per unit k (Sarkar included) for the laws that change its distribution [m
-  // per (m^2/N)] over the kept elements
-  Eigen::VectorXd element_depth_rate(const KneeWearParams& p) const;
+  // per (m^2/N)] over the kept elements of a state
+  Eigen::VectorXd element_depth_rate(const KneeCycleRecord& r, const KneeWearParams& p) const;
   double effective_cycles(const KneeWearParams& p, double cycles) const;
+  // records one cycle (after a settling one) on `model`
+  KneeCycleRecord record(const engine::Model& model, double volume) const;
+  // vertex depth per unit rate integrated along the path to `cycles` (effective) [m]
+  Eigen::VectorXd path_depth(const Rates& r, double cycles) const;
 
   std::string name_;               // condition name
   double friction_ = 0.07;         // mu of the contact [-]
   double sarkar_ = 1.0;            // sqrt(1 + 3 mu^2) [-]
   double period_ = 1.0;            // gait cycle [s]
-  double max_penetration_ = 0.0;   // largest elastic penetration of the cycle [m]
   double work_ = 0.0;              // sum A p ds [J]
   double mean_pressure_ = 0.0;     // work-weighted geometric mean pressure [Pa]
   double mean_cross_shear_ = 0.0;  // work-weighted mean CS [-]
   double seconds_ = 0.0;           // build and simulation wall time [s]
-  Eigen::VectorXd area_;          // kept element areas [m^2]
-  Eigen::VectorXd cross_shear_;   // kept element CS [-]
-  Eigen::MatrixXd pds_;           // kept elements x bins: sum p ds [Pa m]
-  Eigen::MatrixXd lnp_;           // kept elements x bins: mean ln(p / 1 Pa) of the bin [-]
-  Eigen::SparseMatrix<double> spread_;  // vertices x kept elements
+  std::vector<KneeCycleRecord> states_;  // pristine first, then after each loop update
 };
 
 }  // namespace kneesim::diagnosis

@@ -1,5 +1,6 @@
 #include "analysis/diagnosis/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -17,6 +18,30 @@ nlohmann::json params_json(const ModelFit& m) {
   nlohmann::json p = nlohmann::json::object();
   for (size_t i = 0; i < m.specs.size(); ++i) p[m.specs[i].name] = m.params[static_cast<Eigen::Index>(i)];
   return p;
+}
+
+// names of the parameters at a search bound, with value and bound, e.g. "s = 20 (upper bound
+// 20)"; empty when none is
+std::string at_bound_text(const ModelFit& m) {
+  std::string out;
+  for (int i : m.at_bound) {
+    const ParamSpec& s = m.specs[static_cast<size_t>(i)];
+    const double v = m.params[i];
+    const bool upper = std::abs(v - s.upper) < std::abs(v - s.lower);
+    out += (out.empty() ? "" : ", ") + s.name + " = " + num(v) + " (" +
+           (upper ? "upper" : "lower") + " search bound " + num(upper ? s.upper : s.lower) + ")";
+  }
+  return out;
+}
+
+std::string verdict(const ModelFit& m, bool selected) {
+  if (m.effect == Effect::none) return "reference";
+  if (selected) return "named";
+  if (!m.at_bound.empty()) {
+    return std::string(m.passes_gates ? "passed the gates but " : "") + "at a search bound: " +
+           at_bound_text(m) + "; not named";
+  }
+  return m.passes_gates ? "supported, higher held-out RMSE than the named one" : "not supported";
 }
 
 Eigen::VectorXd baseline_of(const DiagnosisCase& c, const ModelFit& m) {
@@ -51,16 +76,28 @@ nlohmann::json diagnosis_json(const DiagnosisCase& c, const DiagnosisResult& r) 
                    {"params_ci95", ci},
                    {"rmse", e.rmse},
                    {"heldout_rmse", e.heldout_rmse}};
+  j["trivial"] = {{"model", r.trivial.model},
+                  {"rmse", r.trivial.rmse},
+                  {"heldout_rmse", r.trivial.heldout_rmse}};
   j["gain"] = r.gain;
+  j["gain_vs_trivial"] = r.gain_vs_trivial;
+  j["baseline_gain_vs_trivial"] =
+      r.trivial.heldout_rmse > 0.0 ? 1.0 - r.baseline.heldout_rmse / r.trivial.heldout_rmse : 0.0;
   j["candidates"] = nlohmann::json::array();
   const double aicc_none = r.candidates.front().aicc;
-  for (const auto& m : r.candidates) {
+  for (size_t i = 0; i < r.candidates.size(); ++i) {
+    const auto& m = r.candidates[i];
+    nlohmann::json bound = nlohmann::json::array();
+    for (int b : m.at_bound) bound.push_back(m.specs[static_cast<size_t>(b)].name);
     j["candidates"].push_back({{"name", std::string(effect_name(m.effect))},
                                {"params", params_json(m)},
                                {"rmse", m.rmse},
                                {"heldout_rmse", m.heldout_rmse},
                                {"aicc", m.aicc},
-                               {"delta_aicc", m.aicc - aicc_none}});
+                               {"delta_aicc", m.aicc - aicc_none},
+                               {"passes_gates", m.passes_gates},
+                               {"params_at_search_bound", bound},
+                               {"verdict", verdict(m, static_cast<int>(i) == r.selected)}});
   }
   j["seconds"] = r.seconds;
   return j;
@@ -105,7 +142,15 @@ std::string diagnosis_markdown(const DiagnosisCase& c, const DiagnosisResult& r)
   md += "\n## Named cause: " + std::string(info.name) + "\n\n" + std::string(info.physics) + "\n\n";
   if (e.effect == Effect::none) {
     md += "No candidate extension passed both gates (AICc drop and held-out improvement "
-          "against the refitted baseline), so the data do not support an extension.\n\n";
+          "against the refitted baseline) with its parameters inside the searched range, so "
+          "the data do not support an extension.\n\n";
+    for (const auto& m : r.candidates) {
+      if (m.passes_gates && !m.at_bound.empty()) {
+        md += "`" + std::string(effect_name(m.effect)) + "` passed both gates but ended at a "
+              "search bound (" + at_bound_text(m) + "): the data want a value outside the "
+              "searched range, so the fit is not an estimate and the effect is not named.\n\n";
+      }
+    }
   }
   md += "## Extension\n\nModel: `" + e.model + "`.\n\n| parameter | value | 95 % CI (bootstrap) |\n"
         "|---|---|---|\n";
@@ -125,24 +170,44 @@ std::string diagnosis_markdown(const DiagnosisCase& c, const DiagnosisResult& r)
     }
     md += ".\n";
   }
+  if (e.ci_low.size()) {
+    std::vector<int> ci_at_bound = find_params_at_bound(e.specs, e.ci_low);
+    for (int i : find_params_at_bound(e.specs, e.ci_high)) ci_at_bound.push_back(i);
+    std::sort(ci_at_bound.begin(), ci_at_bound.end());
+    ci_at_bound.erase(std::unique(ci_at_bound.begin(), ci_at_bound.end()), ci_at_bound.end());
+    for (int i : ci_at_bound) {
+      md += "\nThe interval of " + e.specs[static_cast<size_t>(i)].name + " reaches a search "
+            "bound: the data bound it on one side only.\n";
+    }
+  }
+  const double base_vs_trivial =
+      r.trivial.heldout_rmse > 0.0 ? 1.0 - b.heldout_rmse / r.trivial.heldout_rmse : 0.0;
   md += "\nIn-sample RMSE " + num(e.rmse) + ", held-out RMSE " + num(e.heldout_rmse) +
         " (" + r.rmse_unit + ").\n\n**Gain** = 1 - heldout_rmse_extended / "
-        "heldout_rmse_baseline = " + num(r.gain, "%.3f") + ".\n\n";
+        "heldout_rmse_baseline = " + num(r.gain, "%.3f") + ".\n\n"
+        "**Against the trivial predictor** (" + r.trivial.model + ", held out: the training "
+        "rows' mean): held-out RMSE " + num(r.trivial.heldout_rmse) + "; gain of the extended "
+        "model 1 - " + num(e.heldout_rmse) + " / " + num(r.trivial.heldout_rmse) + " = " +
+        num(r.gain_vs_trivial, "%.3f") + ", of the baseline " + num(base_vs_trivial, "%.3f") +
+        (r.gain_vs_trivial <= 0.0 ? " (the extended model predicts no better than the "
+                                    "measured mean)" : "") + ".\n\n";
 
-  md += "## Candidates\n\n| effect | held-out RMSE | AICc | dAICc vs none | parameters |\n"
-        "|---|---|---|---|---|\n";
-  for (const auto& m : r.candidates) {
+  md += "## Candidates\n\n| effect | held-out RMSE | AICc | dAICc vs none | parameters | "
+        "verdict |\n|---|---|---|---|---|---|\n";
+  for (size_t ci = 0; ci < r.candidates.size(); ++ci) {
+    const auto& m = r.candidates[ci];
     std::string ps;
     for (size_t i = 0; i < m.specs.size(); ++i) {
       ps += (i ? ", " : "") + m.specs[i].name + " = " + num(m.params[static_cast<Eigen::Index>(i)]);
     }
     md += "| " + std::string(effect_name(m.effect)) + " | " + num(m.heldout_rmse) + " | " +
           num(m.aicc, "%.1f") + " | " + num(m.aicc - r.candidates.front().aicc, "%.1f") + " | " +
-          ps + " |\n";
+          ps + " | " + verdict(m, static_cast<int>(ci) == r.selected) + " |\n";
   }
   md += "\nSelection: a candidate must lower AICc by more than the threshold and the held-out "
         "RMSE by more than the threshold fraction against `none` (the baseline refitted by "
-        "least squares); the lowest held-out RMSE among those wins. ";
+        "least squares), with no parameter at a search bound; the lowest held-out RMSE among "
+        "those wins. ";
   switch (r.noise_model) {
     case NoiseModel::pooled:
       md += "Noise: one sd for all measurements, other quantities converted into " +

@@ -7,6 +7,10 @@
 // `vv_` (varus-valgus). Other channels (flexion_deg, axial_force_N, ...) are never changed.
 #pragma once
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "loads/iso14243/waveform.h"
 
 namespace kneesim::loads {
@@ -25,5 +29,12 @@ struct WaveformConventions {
 
 // the waveform with the conventions applied (mirror first, then the AP and IE signs)
 Waveform apply_conventions(const Waveform& w, const WaveformConventions& conventions);
+
+// the waveform with the channels named in `delays` delayed by their value [% of the cycle]
+// (the delayed channel at p is the original at p - delay, periodic); when any delay is nonzero
+// every channel is resampled into a table every 0.1 % (linear between samples), else `w` is
+// returned unchanged. For load-timing candidates (a load pattern whose phase differs from the
+// measured flexion's) and the `gait.*_shift_pct` config keys.
+Waveform delay_channels(const Waveform& w, const std::vector<std::pair<std::string, double>>& delays);
 
 }  // namespace kneesim::loads

@@ -182,3 +182,31 @@ TEST_CASE("table interpolation does not depend on the volumes asked for before")
   CHECK(fresh.at(0.77 * kMm3).contact_width ==
         doctest::Approx(direct.contact_width).epsilon(1e-5));
 }
+
+TEST_CASE("incubation law: closed form against a quadrature of its rate factor") {
+  // reference: the volume is the integral of the rate factor 1 - exp(-N / N_i) times k F S,
+  // integrated here by Simpson's rule (independent of the closed form); limits: the initial
+  // rate is zero, and long after N_i the curve is the steady line shifted by N_i cycles
+  const BorRig rig;
+  BorWearParams p;
+  p.incubation_cycles = 25000.0;
+  const double s = sliding_distance_per_cycle(rig);
+  const double per = p.k * 225.0 * s;
+  for (double n : {1e3, 2.5e4, 5e4, 2e5}) {
+    const int m = 2000;
+    double sum = 0.0;
+    for (int i = 0; i <= m; ++i) {
+      const double w = (i == 0 || i == m) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+      sum += w * wear_rate_factor(BorWearLaw::incubation, p, n * i / m, 0.0);
+    }
+    const double quadrature = per * sum * n / (3.0 * m);
+    CHECK(closed_form_volume(BorWearLaw::incubation, p, 225.0, s, n) ==
+          doctest::Approx(quadrature).epsilon(1e-9));
+  }
+  CHECK(wear_rate_factor(BorWearLaw::incubation, p, 0.0, 0.0) == 0.0);
+  CHECK(closed_form_volume(BorWearLaw::incubation, p, 225.0, s, 1e6) ==
+        doctest::Approx(per * (1e6 - 25000.0)).epsilon(1e-12));
+  CHECK(parse_wear_law("incubation", "test") == BorWearLaw::incubation);
+  CHECK(wear_law_param_names(BorWearLaw::incubation) ==
+        std::vector<std::string>{"incubation_cycles"});
+}

@@ -62,7 +62,7 @@ TEST_CASE("diagnosis.json carries exactly the keys of issue 4") {
   CHECK(j["gain"].get<double>() ==
         doctest::Approx(1.0 - j["extended"]["heldout_rmse"].get<double>() /
                                   j["baseline"]["heldout_rmse"].get<double>()));
-  CHECK(j["candidates"].size() == 4);  // none, running_in, pressure_dependent_wear, creep
+  CHECK(j["candidates"].size() == 5);  // none, running_in, incubation, pressure, creep
   for (const auto& cand : j["candidates"]) {
     for (const char* key : {"name", "params", "heldout_rmse", "aicc"}) CHECK(cand.contains(key));
   }
@@ -101,7 +101,7 @@ TEST_CASE("the split rule follows the specimens") {
   const auto no_spec = make_bor_case(read_bor_measured(write_temp("good.csv", kGood)), {});
   CHECK(no_spec.split_rule == "leave-one-load-out");
   CHECK(no_spec.folds.size() == 2);
-  CHECK(no_spec.candidates.size() == 2);  // no depth: creep is not a candidate
+  CHECK(no_spec.candidates.size() == 3);  // no depth: creep is not a candidate
 }
 
 TEST_CASE("practitioner calibration recovers k_D from the steady-state slope") {

@@ -44,10 +44,16 @@ SyntheticData make_synthetic_bor(diagnosis::Effect effect, std::uint64_t seed,
       s.params["creep_ratio"] = p.creep_ratio;
       s.params["creep_time_s"] = p.creep_time;
       break;
+    case Effect::incubation:
+      law = bor::BorWearLaw::incubation;
+      p.incubation_cycles = uniform(10000.0, 40000.0);
+      s.params["incubation_cycles"] = p.incubation_cycles;
+      break;
     case Effect::none:
     case Effect::cross_shear:
     case Effect::friction:
-    case Effect::restraint: break;
+    case Effect::restraint:
+    case Effect::load_convention: break;
   }
 
   s.data.source = "synthetic-" + std::string(diagnosis::effect_name(effect)) + "-" +

@@ -11,6 +11,8 @@
 //               16 %), decay constant 5 000-20 000 cycles
 //   pressure_dependent_wear: alpha 0.7-1.5 (1 = contact-area law)
 //   creep: phi 0.3-1.0 of the elastic penetration, tau 0.5-3 h
+//   incubation: N_i 10 000-40 000 cycles (a deficit of 5-20 % of the 200k-cycle Archard
+//               volume, the size the paper's reading of Hussin 2024 implies: 12 %)
 // Scatter: k of each specimen lognormal with 5 % CV; volume noise 0.02 mm^3 + 1 %, depth noise
 // 2 um + 2 % (one standard deviation).
 #pragma once

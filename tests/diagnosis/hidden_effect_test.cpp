@@ -12,7 +12,7 @@ using kneesim::test::run_identification;
 TEST_CASE("hidden effects are named and clean data give none (volume and depth)") {
   const auto t = run_identification(5000, 4, true);
   INFO(t.failures);
-  CHECK(t.runs == 16);
+  CHECK(t.runs == 20);
   CHECK(t.correct == t.runs);
   CHECK(t.false_positives == 0);
   CHECK(t.low_gain == 0);
@@ -24,7 +24,7 @@ TEST_CASE("hidden effects are named and clean data give none (volume and depth)"
 TEST_CASE("hidden effects are named and clean data give none (volume only)") {
   const auto t = run_identification(6000, 3, false);
   INFO(t.failures);
-  CHECK(t.runs == 9);
+  CHECK(t.runs == 12);
   CHECK(t.correct == t.runs);
   CHECK(t.false_positives == 0);
   CHECK(t.low_gain == 0);

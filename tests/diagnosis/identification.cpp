@@ -13,7 +13,7 @@ namespace kneesim::test {
 
 std::vector<diagnosis::Effect> bor_test_effects(bool with_depth) {
   using diagnosis::Effect;
-  std::vector<Effect> effects = {Effect::none, Effect::running_in,
+  std::vector<Effect> effects = {Effect::none, Effect::running_in, Effect::incubation,
                                  Effect::pressure_dependent_wear};
   if (with_depth) effects.push_back(Effect::creep);
   return effects;

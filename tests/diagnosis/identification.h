@@ -14,8 +14,8 @@ namespace kneesim::test {
 
 constexpr double kMinGain = 0.2;  // required gain for a named effect [-]
 
-// the effects of the block-on-ring tests: none, running_in, pressure_dependent_wear and (with
-// depth) creep
+// the effects of the block-on-ring tests: none, running_in, incubation,
+// pressure_dependent_wear and (with depth) creep
 std::vector<diagnosis::Effect> bor_test_effects(bool with_depth);
 
 // seeds first_seed .. first_seed + seeds - 1 for each of `effects`

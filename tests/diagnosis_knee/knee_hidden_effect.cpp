@@ -78,9 +78,14 @@ KneeSynthetic make_synthetic_knee_wear(Effect effect, std::uint64_t seed, bool w
       s.params["creep_ratio"] = p.creep_ratio;
       s.params["creep_time_s"] = p.creep_time;
       break;
+    case Effect::incubation:
+      p.incubation_cycles = uniform(rng, 1e5, 4e5);
+      s.params["incubation_cycles"] = p.incubation_cycles;
+      break;
     case Effect::none:
     case Effect::friction:
-    case Effect::restraint: break;
+    case Effect::restraint:
+    case Effect::load_convention: break;
   }
   int row = 2;
   std::vector<diagnosis::Measurement> depth_rows;

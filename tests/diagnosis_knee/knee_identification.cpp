@@ -8,6 +8,7 @@
 #include "analysis/diagnosis/knee_wear_case.h"
 #include "tests/diagnosis/candidate_line.h"
 #include "tests/diagnosis_knee/knee_hidden_effect.h"
+#include "tests/diagnosis_knee/knee_loop_data.h"
 
 namespace kneesim::test {
 namespace {
@@ -73,6 +74,33 @@ IdentificationTally run_knee_wear_identification(const std::vector<diagnosis::Ef
                                                         specimens > 0 ? specimens : kKneeSpecimens);
       const auto c = diagnosis::make_knee_wear_case(s.data, knee_test_tables(), {});
       tally(t, truth, seed, diagnosis::diagnose(c, opt), kKneeWearMinGain);
+    }
+  }
+  return t;
+}
+
+LoopTallies run_loop_identification(const std::vector<diagnosis::Effect>& effects,
+                                    std::uint64_t first_seed, int seeds,
+                                    const std::vector<double>& cvs, bool linear_too,
+                                    int specimens) {
+  LoopTallies t;
+  t.path.resize(cvs.size());
+  t.linear.resize(cvs.size());
+  diagnosis::DiagnosisOptions opt;
+  opt.bootstrap = 0;
+  for (diagnosis::Effect truth : effects) {
+    for (int i = 0; i < seeds; ++i) {
+      const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
+      const LoopTruth lt = make_loop_truth(truth, seed);
+      for (size_t j = 0; j < cvs.size(); ++j) {
+        const KneeSynthetic s = make_loop_knee_wear(lt, seed * 7 + j, cvs[j], specimens);
+        const auto c = diagnosis::make_knee_wear_case(s.data, knee_test_path_tables(), {});
+        tally(t.path[j], truth, seed, diagnosis::diagnose(c, opt), kKneeWearMinGain);
+        if (linear_too) {
+          const auto l = diagnosis::make_knee_wear_case(s.data, knee_test_tables(), {});
+          tally(t.linear[j], truth, seed, diagnosis::diagnose(l, opt), kKneeWearMinGain);
+        }
+      }
     }
   }
   return t;

@@ -20,6 +20,18 @@ constexpr double kKinematicsMinGain = 0.2; // required gain of a named kinematic
 IdentificationTally run_knee_wear_identification(const std::vector<diagnosis::Effect>& effects,
                                        std::uint64_t first_seed, int seeds, bool with_depth,
                                        int specimens = 0);  // 0: the design's kKneeSpecimens
+// knee-wear data made by the wear loop (knee_loop_data.h): for each effect and seed one loop
+// truth, then one data set per specimen scatter in `cvs`; each diagnosed with the forward
+// model that follows the geometry (`path`) and, when `linear_too`, the pristine-linear one
+// (`linear`); one tally per scatter
+struct LoopTallies {
+  std::vector<IdentificationTally> path, linear;
+};
+LoopTallies run_loop_identification(const std::vector<diagnosis::Effect>& effects,
+                                    std::uint64_t first_seed, int seeds,
+                                    const std::vector<double>& cvs, bool linear_too,
+                                    int specimens = 3);
+
 IdentificationTally run_kinematics_identification(const std::vector<diagnosis::Effect>& effects,
                                         std::uint64_t first_seed, int seeds);
 

@@ -227,3 +227,23 @@ TEST_CASE("a CSV saved as \"CSV UTF-8\" (byte-order mark) reads like a plain one
   std::string line = "x\xEF\xBB\xBF";
   CHECK_FALSE(kneesim::loads::strip_utf8_bom(line));
 }
+
+TEST_CASE("delay_channels: the delayed channel at p is the original at p - d, periodic") {
+  // reference: the original waveform evaluated at the shifted time (sampling every 0.1 % with
+  // linear interpolation: the error of a half-cosine segment of amplitude A over T % is below
+  // A (pi / T)^2 0.1^2 / 8, under 0.01 % of the peak here); zero delays return the waveform
+  const Waveform w = Waveform::from_keypoints(
+      {{"ap_force_N", {0.0, 8.0, 28.0, 45.0, 60.0}, {0.0, -265.0, -40.0, 110.0, 0.0}},
+       {"ie_torque_Nm", {0.0, 5.0, 45.0, 62.0}, {0.0, -1.0, 6.0, 0.0}}});
+  const Waveform same = delay_channels(w, {{"ap_force_N", 0.0}});
+  CHECK(same.interpolation(0) == w.interpolation(0));
+  const Waveform d = delay_channels(w, {{"ap_force_N", 10.0}, {"ie_torque_Nm", -7.5}});
+  for (double p : {0.0, 3.3, 18.0, 55.05, 97.2}) {
+    CHECK(d.value(d.channel("ap_force_N"), p) ==
+          doctest::Approx(w.value(w.channel("ap_force_N"), p - 10.0)).epsilon(1e-4).scale(265.0));
+    CHECK(d.value(d.channel("ie_torque_Nm"), p) ==
+          doctest::Approx(w.value(w.channel("ie_torque_Nm"), p + 7.5)).epsilon(1e-4).scale(6.0));
+  }
+  // the peak moves by the delay
+  CHECK(d.value(d.channel("ap_force_N"), 18.0) == doctest::Approx(-265.0).epsilon(1e-6));
+}

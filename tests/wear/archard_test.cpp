@@ -274,3 +274,28 @@ TEST_CASE("update schedule: the list in order, its last entry repeated; else upd
   CHECK(wear::update_interval(o, 2) == 250'000);
   CHECK(wear::update_interval(o, 9) == 250'000);
 }
+
+TEST_CASE("effective cycles of running-in and incubation: additive over updates, closed limits") {
+  // reference: the integral of the rate factor over [n0, n0 + n] is additive over consecutive
+  // intervals (the wear loop splits a run into updates), and its limits are the steady line
+  // shifted by +a N_r (running-in) or -N_i (incubation)
+  wear::WearLawParams run_in;
+  run_in.law = wear::WearLaw::kRunningIn;
+  run_in.running_in_excess = 0.5;
+  run_in.running_in_cycles = 2e5;
+  wear::WearLawParams incub;
+  incub.law = wear::WearLaw::kIncubation;
+  incub.incubation_cycles = 1.5e5;
+  for (const auto& law : {run_in, incub}) {
+    const double whole = wear::effective_cycles(law, 0.0, 3e6);
+    const double split = wear::effective_cycles(law, 0.0, 2.5e5) +
+                         wear::effective_cycles(law, 2.5e5, 7.5e5) +
+                         wear::effective_cycles(law, 1e6, 2e6);
+    CHECK(split == doctest::Approx(whole).epsilon(1e-12));
+  }
+  CHECK(wear::effective_cycles(run_in, 0.0, 1e8) == doctest::Approx(1e8 + 0.5 * 2e5).epsilon(1e-12));
+  CHECK(wear::effective_cycles(incub, 0.0, 1e8) == doctest::Approx(1e8 - 1.5e5).epsilon(1e-12));
+  // the incubation rate starts at zero: the first 100 cycles count as 100^2 / (2 N_i)
+  CHECK(wear::effective_cycles(incub, 0.0, 100.0) ==
+        doctest::Approx(100.0 * 100.0 / (2.0 * 1.5e5)).epsilon(1e-3));
+}

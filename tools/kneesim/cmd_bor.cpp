@@ -123,11 +123,12 @@ void add_bor_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--step", opt->step, "cycles between output rows")->capture_default_str();
   cmd->add_option("--effect", opt->effect,
-                  "wear law: none, running_in, pressure_dependent_wear, creep")
+                  "wear law: none, running_in, pressure_dependent_wear, creep, incubation")
       ->capture_default_str();
   cmd->add_option("--effect-param", opt->effect_params,
                   "effect parameter name=value (running_in_excess, running_in_cycles, "
-                  "pressure_exponent, reference_pressure_MPa, creep_ratio, creep_time_s)");
+                  "pressure_exponent, reference_pressure_MPa, creep_ratio, creep_time_s, "
+                  "incubation_cycles)");
   cmd->add_option("--out", opt->out, "output folder")->capture_default_str();
   add_bor_rig_options(cmd, opt->rig);
   cmd->callback([opt] { run_bor(*opt); });

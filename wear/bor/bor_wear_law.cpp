@@ -13,6 +13,7 @@ std::string_view wear_law_name(BorWearLaw law) {
     case BorWearLaw::running_in: return "running_in";
     case BorWearLaw::pressure_dependent_wear: return "pressure_dependent_wear";
     case BorWearLaw::creep: return "creep";
+    case BorWearLaw::incubation: return "incubation";
   }
   return "archard";
 }
@@ -22,9 +23,10 @@ BorWearLaw parse_wear_law(const std::string& name, const std::string& source) {
   if (name == "running_in") return BorWearLaw::running_in;
   if (name == "pressure_dependent_wear") return BorWearLaw::pressure_dependent_wear;
   if (name == "creep") return BorWearLaw::creep;
+  if (name == "incubation") return BorWearLaw::incubation;
   throw InputError(source + ": effect '" + name +
                    "' is not a block-on-ring wear law; allowed: none, running_in, "
-                   "pressure_dependent_wear, creep.");
+                   "pressure_dependent_wear, creep, incubation.");
 }
 
 std::vector<std::string> wear_law_param_names(BorWearLaw law) {
@@ -34,6 +36,7 @@ std::vector<std::string> wear_law_param_names(BorWearLaw law) {
     case BorWearLaw::pressure_dependent_wear:
       return {"pressure_exponent", "reference_pressure_MPa"};
     case BorWearLaw::creep: return {"creep_ratio", "creep_time_s"};
+    case BorWearLaw::incubation: return {"incubation_cycles"};
   }
   return {};
 }
@@ -54,6 +57,7 @@ constexpr ParamDef kParams[] = {
     {"reference_pressure_MPa", &BorWearParams::reference_pressure, 1e6, 1e-3, 1e3},
     {"creep_ratio", &BorWearParams::creep_ratio, 1.0, 0.0, 100.0},
     {"creep_time_s", &BorWearParams::creep_time, 1.0, 1e-3, 1e9},
+    {"incubation_cycles", &BorWearParams::incubation_cycles, 1.0, 1.0, 1e8},
 };
 
 const ParamDef& find_param(const std::string& io_name, const std::string& source) {
@@ -62,7 +66,7 @@ const ParamDef& find_param(const std::string& io_name, const std::string& source
   }
   throw InputError(source + ": unknown effect parameter '" + io_name +
                    "'; allowed: running_in_excess, running_in_cycles, pressure_exponent, "
-                   "reference_pressure_MPa, creep_ratio, creep_time_s.");
+                   "reference_pressure_MPa, creep_ratio, creep_time_s, incubation_cycles.");
 }
 
 }  // namespace
@@ -92,6 +96,7 @@ double wear_rate_factor(BorWearLaw law, const BorWearParams& p, double cycles, d
       return 1.0 + p.running_in_excess * std::exp(-cycles / p.running_in_cycles);
     case BorWearLaw::pressure_dependent_wear:
       return std::pow(pressure / p.reference_pressure, -p.pressure_exponent);
+    case BorWearLaw::incubation: return -std::expm1(-cycles / p.incubation_cycles);
   }
   return 1.0;
 }
@@ -105,6 +110,10 @@ double closed_form_volume(BorWearLaw law, const BorWearParams& p, double load, d
     case BorWearLaw::running_in: {
       const double nr = p.running_in_cycles;
       return archard * (cycles + p.running_in_excess * nr * -std::expm1(-cycles / nr));
+    }
+    case BorWearLaw::incubation: {
+      const double ni = p.incubation_cycles;
+      return archard * (cycles - ni * -std::expm1(-cycles / ni));
     }
     case BorWearLaw::pressure_dependent_wear: break;
   }

@@ -8,6 +8,11 @@
 //   pressure_dependent_wear  dV/dN = k (p / p_ref)^-alpha F S         p = mean contact
 //                            pressure of the current (worn) geometry; alpha = 1 is the
 //                            contact-area law of Abdelgaied 2011 (V ~ A S)
+//   incubation               dV/dN = k F S (1 - exp(-N / N_i))        the wear rate rises from
+//                            zero to the steady rate: an incubation period before steady wear
+//                            (strain must accumulate before debris detaches); after a few N_i
+//                            the volume lags the steady line by k F S N_i, a deficit
+//                            proportional to the load
 //   creep                    volume as archard; penetration depth gains
 //                            phi delta_el(F) (1 - exp(-t / tau)), delta_el = unworn elastic
 //                            penetration, t = test time: depth without volume loss (Zhao 2008)
@@ -22,7 +27,7 @@
 
 namespace kneesim::bor {
 
-enum class BorWearLaw { archard, running_in, pressure_dependent_wear, creep };
+enum class BorWearLaw { archard, running_in, pressure_dependent_wear, creep, incubation };
 
 struct BorWearParams {
   double k = 4.1e-16;                   // k_D steady-state wear factor (4.1e-10 mm^3/(N mm),
@@ -33,10 +38,12 @@ struct BorWearParams {
   double reference_pressure = 5.8e6;   // p_ref (unworn mean pressure at 225 N) [Pa]
   double creep_ratio = 0.5;             // phi, saturated creep over elastic penetration [-]
   double creep_time = 3600.0;           // tau, creep time constant [s]
+  double incubation_cycles = 25000.0;   // N_i, incubation time constant [cycles]
 };
 
 std::string_view wear_law_name(BorWearLaw law);
-// parses "archard" (also "none"), "running_in", "pressure_dependent_wear", "creep"; throws
+// parses "archard" (also "none"), "running_in", "pressure_dependent_wear", "creep",
+// "incubation"; throws
 // InputError naming `source` and the allowed names otherwise
 BorWearLaw parse_wear_law(const std::string& name, const std::string& source);
 
@@ -54,7 +61,7 @@ double get_wear_param(const BorWearParams& p, const std::string& io_name);
 double wear_rate_factor(BorWearLaw law, const BorWearParams& p, double cycles, double pressure);
 
 // closed-form volume for the laws whose rate does not depend on the geometry (archard,
-// running_in, creep) [m^3]; S = sliding distance per cycle [m]
+// running_in, creep, incubation) [m^3]; S = sliding distance per cycle [m]
 double closed_form_volume(BorWearLaw law, const BorWearParams& p, double load, double sliding,
                           double cycles);
 

@@ -1,0 +1,127 @@
+// The two guards of issue 14 item 3 in the generic diagnosis: a fit whose parameter ends at a
+// search bound is reported and never named, and every result carries the gain against the
+// trivial predictor (the measured mean). References: the bound rule's definition (0.5 % of the
+// searched range in the fitted space) and a hand computation of the fold means.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "analysis/diagnosis/diagnose.h"
+#include "analysis/diagnosis/report.h"
+
+using namespace kneesim::diagnosis;
+
+namespace {
+
+// y = b + s x on x = 0..19 in two groups (folds by group); the baseline is the constant b,
+// the "effect" the slope s with the given bounds (Effect::running_in stands for any effect:
+// the framework does not look at its meaning)
+DiagnosisCase line_case(double true_slope, double slope_upper, double noise_sd) {
+  DiagnosisCase c;
+  c.name = "line";
+  c.measured.source = "line.csv";
+  c.measured.x_name = "x";
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> noise(0.0, noise_sd);
+  for (int i = 0; i < 40; ++i) {
+    const double x = i % 20;
+    c.measured.rows.push_back({i < 20 ? "a" : "b", "", "y_mm", x,
+                               3.0 + true_slope * x + noise(rng), i + 2});
+  }
+  c.baseline_model = "constant";
+  c.baseline_params = {{"b_mm", "level", -100.0, 100.0, 0.0, false, {}}};
+  c.candidates = {Effect::running_in};
+  c.effect_params = [slope_upper](Effect) {
+    return std::vector<ParamSpec>{{"s_mm", "slope", 0.01, slope_upper, 0.1, true, {}}};
+  };
+  auto rows = c.measured.rows;
+  c.predict = [rows](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep,
+                     const std::vector<int>& idx) {
+    Eigen::VectorXd v(static_cast<Eigen::Index>(idx.size()));
+    for (size_t i = 0; i < idx.size(); ++i) {
+      const double x = rows[static_cast<size_t>(idx[i])].x;
+      v[static_cast<Eigen::Index>(i)] = b[0] + (e == Effect::none ? 0.0 : ep[0] * x);
+    }
+    return v;
+  };
+  c.calibrate_baseline = [rows](const std::vector<int>& train) {
+    double s = 0.0;
+    for (int i : train) s += rows[static_cast<size_t>(i)].value;
+    return Eigen::VectorXd::Constant(1, s / static_cast<double>(train.size()));
+  };
+  c.split_rule = "leave-one-group-out";
+  c.folds = make_leave_one_out_folds(c.measured.rows, false, "group");
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("find_params_at_bound: 0.5 % of the searched range, in the fitted space") {
+  const std::vector<ParamSpec> specs = {
+      {"scale", "", 0.05, 20.0, 1.0, true, {}},             // log: ln range 5.99, tol 0.030
+      {"gap_mm", "", 0.0, 10.0, 3.0, false, {}, true},       // lower bound is a physical limit
+      {"alpha", "", -3.0, 4.0, 0.5, false, {}}};             // linear: tol 0.035
+  auto at = [&](double s, double g, double a) {
+    return find_params_at_bound(specs, Eigen::Vector3d(s, g, a));
+  };
+  CHECK(at(20.0, 3.0, 0.5) == std::vector<int>{0});
+  CHECK(at(20.0 * std::exp(-0.029), 3.0, 0.5) == std::vector<int>{0});
+  CHECK(at(20.0 * std::exp(-0.031), 3.0, 0.5).empty());
+  CHECK(at(0.05, 3.0, 0.5) == std::vector<int>{0});
+  CHECK(at(1.0, 0.0, 0.5).empty());  // a gap of 0 is a legitimate fit
+  CHECK(at(1.0, 10.0, 0.5) == std::vector<int>{1});
+  CHECK(at(1.0, 3.0, -2.97) == std::vector<int>{2});
+  CHECK(at(1.0, 3.0, -2.96).empty());
+}
+
+TEST_CASE("a candidate whose fit ends at a search bound is reported and not named") {
+  // true slope 2 with the search capped at 0.5: the effect lowers AICc enormously, but only
+  // because the fit wants a value outside the searched range
+  const DiagnosisCase c = line_case(2.0, 0.5, 0.3);
+  DiagnosisOptions opt;
+  opt.bootstrap = 0;
+  const DiagnosisResult r = diagnose(c, opt);
+  REQUIRE(r.candidates.size() == 2);
+  const ModelFit& slope = r.candidates[1];
+  CHECK(slope.params[1] == doctest::Approx(0.5));
+  CHECK(slope.passes_gates);
+  CHECK(slope.at_bound == std::vector<int>{1});
+  CHECK(r.effect() == Effect::none);
+  const std::string md = diagnosis_markdown(c, r);
+  CHECK(md.find("passed both gates but ended at a search bound (s_mm = 0.5 (upper search "
+                "bound 0.5))") != std::string::npos);
+  const auto j = diagnosis_json(c, r);
+  CHECK(j["candidates"][1]["params_at_search_bound"][0] == "s_mm");
+  // the same data with the bound above the truth: named, slope recovered
+  const DiagnosisResult ok = diagnose(line_case(2.0, 10.0, 0.3), opt);
+  CHECK(ok.effect() == Effect::running_in);
+  CHECK(ok.extended().params[1] == doctest::Approx(2.0).epsilon(0.02));
+  CHECK(ok.extended().at_bound.empty());
+}
+
+TEST_CASE("the trivial predictor is the training rows' mean of each quantity") {
+  const DiagnosisCase c = line_case(0.2, 10.0, 0.3);
+  DiagnosisOptions opt;
+  opt.bootstrap = 0;
+  const DiagnosisResult r = diagnose(c, opt);
+  // by hand: group a is predicted by the mean of group b and vice versa
+  double mean_a = 0.0, mean_b = 0.0;
+  for (const auto& m : c.measured.rows) (m.group == "a" ? mean_a : mean_b) += m.value / 20.0;
+  double ss = 0.0, ss_in = 0.0;
+  for (const auto& m : c.measured.rows) {
+    const double held = m.group == "a" ? mean_b : mean_a;
+    ss += (m.value - held) * (m.value - held);
+    const double all = 0.5 * (mean_a + mean_b);
+    ss_in += (m.value - all) * (m.value - all);
+  }
+  CHECK(r.trivial.heldout_rmse == doctest::Approx(std::sqrt(ss / 40.0)).epsilon(1e-12));
+  CHECK(r.trivial.rmse == doctest::Approx(std::sqrt(ss_in / 40.0)).epsilon(1e-12));
+  CHECK(r.gain_vs_trivial ==
+        doctest::Approx(1.0 - r.extended().heldout_rmse / r.trivial.heldout_rmse));
+  // the constant baseline is the trivial predictor here: gain against it is the same
+  CHECK(r.baseline.heldout_rmse == doctest::Approx(r.trivial.heldout_rmse).epsilon(1e-12));
+  const auto j = diagnosis_json(c, r);
+  CHECK(j["gain_vs_trivial"].get<double>() == doctest::Approx(r.gain_vs_trivial));
+  CHECK(diagnosis_markdown(c, r).find("Against the trivial predictor") != std::string::npos);
+}

@@ -21,10 +21,11 @@ std::string write_diagnosis(const DiagnosisCase& c, const DiagnosisResult& r,
                                 c.name + ": effect " + effect});
   char line[512];
   std::snprintf(line, sizeof line,
-                "diagnosis %s: effect %s, held-out RMSE %.4g -> %.4g (%s), gain %.3f, %.2f s -> %s\n",
+                "diagnosis %s: effect %s, held-out RMSE %.4g -> %.4g (%s), gain %.3f "
+                "(against the measured mean %.4g: %.3f), %.2f s -> %s\n",
                 c.name.c_str(), effect.c_str(), r.baseline.heldout_rmse,
-                r.extended().heldout_rmse, r.rmse_unit.c_str(), r.gain, r.seconds,
-                out.string().c_str());
+                r.extended().heldout_rmse, r.rmse_unit.c_str(), r.gain,
+                r.trivial.heldout_rmse, r.gain_vs_trivial, r.seconds, out.string().c_str());
   return line;
 }
 

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "analysis/diagnosis/diagnosis_output.h"
@@ -101,6 +102,10 @@ KneeWearDiagnosisReport run_knee_wear_diagnosis(const KneeWearDiagnosisOptions& 
                      std::to_string(o.steady_state_from_cycles) +
                      " is outside the allowed range [0, 1e9].");
   }
+  if (o.geometry_states < 0 || o.geometry_states > 50) {
+    throw InputError("command line: --geometry-states = " + std::to_string(o.geometry_states) +
+                     " is outside the allowed range [0, 50].");
+  }
   if (o.check_updates < 0 || o.check_updates > 100) {
     throw InputError("command line: --check-updates = " + std::to_string(o.check_updates) +
                      " is outside the allowed range [0, 100].");
@@ -109,7 +114,7 @@ KneeWearDiagnosisReport run_knee_wear_diagnosis(const KneeWearDiagnosisOptions& 
   MeasuredData data = read_knee_wear_measured(o.measured);
   const auto configs = knee_condition_configs(data, o.config, o.sets);
   const auto t_sim = std::chrono::steady_clock::now();
-  const KneeWearTables tables = make_knee_wear_tables(configs);
+  const KneeWearTables tables = make_knee_wear_tables(configs, data, o.geometry_states);
   const double sim_seconds = seconds_since(t_sim);
   KneeWearCaseOptions ko;
   ko.calibration_condition = o.calibration_condition;
@@ -120,10 +125,22 @@ KneeWearDiagnosisReport run_knee_wear_diagnosis(const KneeWearDiagnosisOptions& 
   KneeWearDiagnosisReport report;
   report.summary_line = write_diagnosis(c, r, o.out);
 
-  std::string md = "## Forward model and its approximation\n\nEach condition was simulated once "
-                   "(one settling and one observed gait cycle on the pristine insert, " +
-                   fmt("%.1f", sim_seconds) + " s for " + std::to_string(tables.size()) +
-                   " conditions); every prediction is wear linear in cycles on that cycle.\n\n"
+  const int states = tables.begin()->second->geometry_states();
+  std::string md = "## Forward model and its approximation\n\n" +
+                   (states > 1
+                        ? "Each condition was simulated along its own Archard wear loop to " +
+                              fmt("%.1f", kPathVolumeMargin) + " times its largest measured "
+                              "volume, one cycle recorded on the pristine insert and after each "
+                              "of " + std::to_string(states - 1) + " updates (" +
+                              fmt("%.1f", sim_seconds) + " s for " +
+                              std::to_string(tables.size()) + " conditions); every prediction "
+                              "follows that geometry path (rates interpolated in worn volume)."
+                        : "Each condition was simulated once (one settling and one observed "
+                          "gait cycle on the pristine insert, " + fmt("%.1f", sim_seconds) +
+                              " s for " + std::to_string(tables.size()) +
+                              " conditions); every prediction is wear linear in cycles on that "
+                              "cycle.") +
+                   "\n\n"
                    "| condition | mean contact pressure (MPa) | mean cross-shear ratio | "
                    "sum A p ds per cycle (J) |\n|---|---|---|---|\n";
   for (const auto& [name, t] : tables) {
@@ -171,7 +188,20 @@ KinematicsDiagnosisReport run_kinematics_diagnosis(const KinematicsDiagnosisOpti
   const DiagnosisOptions& options = o.options;
   std::vector<models::Override> overrides;
   for (const auto& s : o.sets) overrides.push_back(models::parse_override(s));
-  const models::Config config = models::load_config(o.config, overrides);
+  models::Config config = models::load_config(o.config, overrides);
+  // a measured .sto carries the flexion of the measured cycle: the rig is driven by it (the
+  // ISO-shaped flexion peaks at 58 deg at 73 %, the DM subject's at 53 deg at 82 %), unless
+  // the config or a --set names a kinematics file already
+  std::string flexion_source = "the gait file's flexion (" + config.gait_file + ")";
+  const bool sto = std::filesystem::path(o.measured).extension() == ".sto";
+  if (sto && config.kinematics_file.empty()) {
+    overrides.push_back(models::parse_override(
+        "gait.kinematics_file=\"" + std::filesystem::absolute(o.measured).string() + "\""));
+    config = models::load_config(o.config, overrides);
+  }
+  if (!config.kinematics_file.empty()) {
+    flexion_source = "the measured flexion of " + config.kinematics_file;
+  }
   auto data = read_kinematics_measured(o.measured,
                                                   femoral_reference_point(config));
   auto sim = std::make_shared<KinematicsSimulator>(config);
@@ -182,7 +212,9 @@ KinematicsDiagnosisReport run_kinematics_diagnosis(const KinematicsDiagnosisOpti
   KinematicsDiagnosisReport report;
   report.summary_line = write_diagnosis(c, r, o.out);
   const auto& e = r.extended();
-  std::string md = "## Forward runs\n\n" + std::to_string(sim->simulations()) +
+  std::string md = "## Forward runs\n\nFlexion prescribed: " + flexion_source +
+                   " (AP force, IE torque and axial force from the gait file).\n\n" +
+                   std::to_string(sim->simulations()) +
                    " rig simulations of " + std::to_string(config.cycles) + " gait cycles each (" +
                    fmt("%.1f", sim->seconds()) + " s; model build " +
                    fmt("%.1f", sim->build_seconds()) + " s; total " +

@@ -18,6 +18,8 @@ struct KneeWearDiagnosisOptions {
   std::string calibration_condition;      // "" = the first condition in the CSV
   double steady_state_from_cycles = 5e5;  // [cycles]
   int check_updates = 4;                  // wear-loop updates of the check, 0 = none [-]
+  int geometry_states = 4;                // worn states of the forward model's geometry
+                                          // path, 0 = pristine-linear (knee_wear_table.h) [-]
   DiagnosisOptions options;
   std::string out = "out/diagnose-knee-wear";
 };

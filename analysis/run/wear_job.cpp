@@ -99,9 +99,11 @@ static wear::WearLawParams make_wear_law(const WearJob& j) {
     law.law = wear::WearLaw::kCrossShear;
   } else if (j.wear_law == "running_in") {
     law.law = wear::WearLaw::kRunningIn;
+  } else if (j.wear_law == "incubation") {
+    law.law = wear::WearLaw::kIncubation;
   } else {
     throw InputError("--wear-law = '" + j.wear_law + "' is not allowed; allowed: archard, "
-                     "pressure_dependent_wear, cross_shear, running_in");
+                     "pressure_dependent_wear, cross_shear, running_in, incubation");
   }
   for (const std::string& text : j.law_params) {
     const size_t eq = text.find('=');
@@ -126,10 +128,13 @@ static wear::WearLawParams make_wear_law(const WearJob& j) {
     } else if (law.law == wear::WearLaw::kRunningIn && name == "running_in_cycles") {
       if (v < 1.0 || v > 1e9) bad("running_in_cycles = " + text.substr(eq + 1) + " is outside [1, 1e9]");
       law.running_in_cycles = v;
+    } else if (law.law == wear::WearLaw::kIncubation && name == "incubation_cycles") {
+      if (v < 1.0 || v > 1e9) bad("incubation_cycles = " + text.substr(eq + 1) + " is outside [1, 1e9]");
+      law.incubation_cycles = v;
     } else {
       bad("'" + name + "' is not a parameter of --wear-law " + j.wear_law +
           " (pressure_dependent_wear: alpha, p_ref_MPa; cross_shear: beta; running_in: "
-          "running_in_excess, running_in_cycles; archard: none)");
+          "running_in_excess, running_in_cycles; incubation: incubation_cycles; archard: none)");
     }
   }
   return law;

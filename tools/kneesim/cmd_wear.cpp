@@ -145,12 +145,14 @@ void add_wear_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--wear-law", args->wear_law,
                   "wear law: archard, pressure_dependent_wear (k (p / p_ref)^-alpha), "
-                  "cross_shear (k (1 + beta CS)) or running_in (k (1 + a exp(-N / N_r))), the "
-                  "extensions `kneesim diagnose knee-wear` fits")
+                  "cross_shear (k (1 + beta CS)), running_in (k (1 + a exp(-N / N_r))) or "
+                  "incubation (k (1 - exp(-N / N_i))), the extensions `kneesim diagnose "
+                  "knee-wear` fits")
       ->capture_default_str();
   cmd->add_option("--law-param", args->law_params,
                   "wear-law parameters name=value: alpha, p_ref_MPa (pressure_dependent_wear), "
-                  "beta (cross_shear), running_in_excess, running_in_cycles (running_in)")
+                  "beta (cross_shear), running_in_excess, running_in_cycles (running_in), "
+                  "incubation_cycles (incubation)")
       ->delimiter(',');
   cmd->add_flag("--allow-any-wear-factor", args->allow_any_wear_factor,
                 "accept wear factors outside 1e-12..1e-6 mm^3/(N mm)");

@@ -69,6 +69,10 @@ void add_diagnose_knee_wear(CLI::App* diagnose) {
                   "geometry updates of the full wear-loop check of the linear approximation "
                   "(0: no check)")
       ->capture_default_str();
+  cmd->add_option("--geometry-states", opt->run.geometry_states,
+                  "worn geometry states the forward model follows along each condition's wear "
+                  "loop (0: wear linear in cycles on the pristine insert)")
+      ->capture_default_str();
   add_diagnose_common_options(cmd, opt->common);
   cmd->callback([opt] { run_diagnose_knee_wear(*opt); });
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "engine/contact_law.h"
@@ -211,6 +212,53 @@ std::vector<engine::RestraintSpring> make_restraint(const Config& c) {
   return out;
 }
 
+// the femoral component's pose on its carriage (rig.alignment): turned by FE, then IE (the
+// carriage's own gimbal order; its VV is the locked VV DOF's value, rig.femur_vv_deg) about its
+// origin, then offset so that the carriage's FE axis sits at (femur_fe_axis_ap_mm,
+// femur_fe_axis_is_mm) of the component
+Eigen::Isometry3d femur_on_carriage(const Config& c) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  if (c.femur_fe_deg == 0.0 && c.femur_ie_deg == 0.0 &&
+      c.femur_fe_axis_ap_mm == 0.0 && c.femur_fe_axis_is_mm == 0.0) {
+    return X;
+  }
+  X.linear() = (Eigen::AngleAxisd(c.femur_fe_deg * kDeg, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(c.femur_ie_deg * kDeg, Eigen::Vector3d::UnitY()))
+                   .toRotationMatrix();
+  X.translation() = -Eigen::Vector3d(c.femur_fe_axis_ap_mm, c.femur_fe_axis_is_mm, 0.0) * kMm;
+  return X;
+}
+
+// every key that shapes the meshes, the articular elements or the femoral distance fields, in
+// full precision: two configs with the same key build the same geometry
+std::string make_geometry_key(const Config& c) {
+  std::string key = c.implant_kind;
+  char buf[64];
+  auto add = [&](double v) {
+    std::snprintf(buf, sizeof buf, " %.17g", v);
+    key += buf;
+  };
+  for (double v : {c.edge_length_mm, c.femur_distal_radius_mm, c.femur_posterior_radius_mm,
+                   c.femur_coronal_radius_mm, c.condyle_width_mm, c.condyle_spacing_mm,
+                   c.insert_sagittal_radius_mm, c.insert_coronal_radius_mm,
+                   c.insert_thickness_mm, c.insert_ap_depth_mm, c.insert_ml_width_mm,
+                   c.insert_base_y_mm, c.articular_min_normal_y, c.sdf_spacing_mm,
+                   c.sdf_band_mm}) {
+    add(v);
+  }
+  for (double v : c.mesh_rotation_deg) add(v);
+  for (double v : c.femur_origin_mm) add(v);
+  if (c.implant_kind == "mesh") {
+    for (const std::string& part : {resolve_path(c, c.femur_mesh).string(),
+                                    resolve_path(c, c.insert_mesh).string(), c.mesh_units}) {
+      key.append(1, ' ').append(part);
+    }
+  }
+  key.append(c.mesh_left_knee ? " left" : " right");
+  key.append(c.insert_closed ? " closed" : " open");
+  return key;
+}
+
 // a whole number of steps per gait cycle, so frames and cycles land on steps
 void apply_time_step(const engine::StableStepReport& r, engine::Model& m) {
   m.contact.damping_beta = r.damping_beta;
@@ -290,39 +338,49 @@ engine::InsertSurface make_worn_insert_surface(const BuiltModel& pristine, const
   return s;
 }
 
-BuiltModel build_model(const Config& c) {
+BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
   const auto start = std::chrono::steady_clock::now();
   BuiltModel out;
   engine::Model& m = out.model;
   out.material = c.material;
   const MaterialConfig& mat = c.material;
 
-  // implant geometry and the insert's articular elements
-  double base_y = 0.0;
-  out.implant = make_implant(c, base_y);
-  m.insert = make_insert_surface(out.implant.insert, base_y, c.articular_min_normal_y,
-                                 &out.implant.articular_to_insert,
-                                 &out.implant.articular_vertex_to_insert);
-  if (m.insert.size() == 0) {
-    throw InputError(config_name(c) + ": the insert has no articular faces (implant.mesh."
-                     "articular_min_normal_y = " + std::to_string(c.articular_min_normal_y) +
-                     "; allowed: below the largest face normal y)");
-  }
+  out.geometry_key = make_geometry_key(c);
+  if (same_geometry && same_geometry->geometry_key == out.geometry_key) {
+    // the same implant and field keys give the same meshes, elements and fields: copy them
+    out.implant = same_geometry->implant;
+    m.insert = same_geometry->model.insert;
+    m.femur_sdf = same_geometry->model.femur_sdf;
+    m.femur_far_sdf = same_geometry->model.femur_far_sdf;
+    m.femur_radius = same_geometry->model.femur_radius;
+  } else {
+    // implant geometry and the insert's articular elements
+    double base_y = 0.0;
+    out.implant = make_implant(c, base_y);
+    m.insert = make_insert_surface(out.implant.insert, base_y, c.articular_min_normal_y,
+                                   &out.implant.articular_to_insert,
+                                   &out.implant.articular_vertex_to_insert);
+    if (m.insert.size() == 0) {
+      throw InputError(config_name(c) + ": the insert has no articular faces (implant.mesh."
+                       "articular_min_normal_y = " + std::to_string(c.articular_min_normal_y) +
+                       "; allowed: below the largest face normal y)");
+    }
 
-  // femoral distance fields, built once per femoral mesh and field parameters in a process;
-  // the build's dense scratch grid is sized before it is allocated
-  check_sdf_memory(c, out.implant.femur);
-  const auto sdf_start = std::chrono::steady_clock::now();
-  m.femur_sdf = find_or_make_distance_field(out.implant.femur.vertices,
-                                            out.implant.femur.triangles,
-                                            c.sdf_spacing_mm * kMm, c.sdf_band_mm * kMm);
-  m.femur_far_sdf = find_or_make_distance_field(
-      out.implant.femur.vertices, out.implant.femur.triangles, kFarSpacing, kFarBand);
-  for (const auto& v : out.implant.femur.vertices) {
-    m.femur_radius = std::max(m.femur_radius, v.norm());
+    // femoral distance fields, built once per femoral mesh and field parameters in a process;
+    // the build's dense scratch grid is sized before it is allocated
+    check_sdf_memory(c, out.implant.femur);
+    const auto sdf_start = std::chrono::steady_clock::now();
+    m.femur_sdf = find_or_make_distance_field(out.implant.femur.vertices,
+                                              out.implant.femur.triangles,
+                                              c.sdf_spacing_mm * kMm, c.sdf_band_mm * kMm);
+    m.femur_far_sdf = find_or_make_distance_field(
+        out.implant.femur.vertices, out.implant.femur.triangles, kFarSpacing, kFarBand);
+    for (const auto& v : out.implant.femur.vertices) {
+      m.femur_radius = std::max(m.femur_radius, v.norm());
+    }
+    out.sdf_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - sdf_start).count();
   }
-  out.sdf_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - sdf_start).count();
 
   // gait and rig
   m.gait = make_gait(c);
@@ -377,12 +435,27 @@ BuiltModel build_model(const Config& c) {
       map_channel(c, m.gait, carriage, i, d);
     }
   }
-  // femur: pivot on the FE axis (F origin), first placed just above the insert
-  m.carriages[0].pivot0_W = Eigen::Vector3d(0, insert_top - femur_box.min().y() + 1e-3, 0);
+  // femur: pivot on the FE axis, the component turned and offset from it (rig.alignment), first
+  // placed just above the insert
+  m.carriages[0].X_BP = femur_on_carriage(c);
+  double femur_min_y = femur_box.min().y();
+  if (!m.carriages[0].X_BP.matrix().isIdentity(0.0)) {
+    femur_min_y = std::numeric_limits<double>::infinity();
+    for (const auto& v : out.implant.femur.vertices)
+      femur_min_y = std::min(femur_min_y, (m.carriages[0].X_BP * v).y());
+  }
+  m.carriages[0].pivot0_W = Eigen::Vector3d(0, insert_top - femur_min_y + 1e-3, 0);
   m.carriages[0].load_point_B = Eigen::Vector3d(0, 0, -c.axial_offset_mm * kMm);
-  // tibia: pivot offset medially; the insert frame T stays at the world origin
-  m.carriages[1].pivot0_W = Eigen::Vector3d(0, 0, -c.tibia_pivot_medial_mm * kMm);
-  m.carriages[1].X_BP.translation() = Eigen::Vector3d(0, 0, c.tibia_pivot_medial_mm * kMm);
+  // tibia: pivot (the IE and VV axes) offset medially and by rig.alignment; the insert frame T
+  // stays at the world origin, tilted about its own origin
+  const Eigen::Vector3d tibial_axis_W(c.tibia_ie_axis_ap_mm * kMm, 0,
+                                      (-c.tibia_pivot_medial_mm + c.tibia_ie_axis_ml_mm) * kMm);
+  m.carriages[1].pivot0_W = tibial_axis_W;
+  if (c.insert_tilt_deg != 0.0) {
+    m.carriages[1].X_BP.linear() =
+        Eigen::AngleAxisd(c.insert_tilt_deg * kDeg, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  }
+  m.carriages[1].X_BP.translation() = -tibial_axis_W;
   m.restraint = make_restraint(c);
 
   // contact

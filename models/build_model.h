@@ -33,10 +33,15 @@ struct BuiltModel {
   double peak_load = 0.0;               // peak axial load of the gait [N]
   double damping_ratio = 0.0;           // contact damping ratio [-]
   double dt_safety = 0.8;               // fraction of the stability limit [-]
+  std::string geometry_key;             // the config keys that shaped implant, elements, fields
 };
 
-// builds everything; throws InputError for bad input (files named)
-BuiltModel build_model(const Config& config);
+// builds everything; throws InputError for bad input (files named). With `same_geometry` (a
+// model built from a config whose implant, mesh and distance-field keys are the same, e.g. the
+// nominal model of a study whose trial varies the rig), its implant, articular elements and
+// femoral distance fields are copied instead of rebuilt: the result is identical to a full
+// build. A different geometry key falls back to the full build.
+BuiltModel build_model(const Config& config, const BuiltModel* same_geometry = nullptr);
 
 // the insert's articular elements from a mesh in T: faces facing up more than min_normal_y
 engine::InsertSurface make_insert_surface(const TriMesh& insert, double base_y,

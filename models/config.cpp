@@ -36,6 +36,8 @@ std::map<std::string, Entry> with_origins(const io::TomlDocument& doc, const std
 struct Field {
   std::function<void(const Value&, const std::string& where)> assign;
   std::string allowed;
+  const double* number = nullptr;  // the target of a number key
+  double lo = 0.0, hi = 0.0;       // its allowed range
 };
 
 [[noreturn]] void fail_value(const std::string& where, const std::string& key, const Value& v,
@@ -56,7 +58,7 @@ class Registry {
                         fail_value(where, key, v, allowed);
                       target = *d;
                     },
-                    allowed};
+                    allowed, &target, lo, hi};
   }
   void integer(const std::string& key, int& target, int lo, int hi) {
     const std::string allowed =
@@ -227,6 +229,13 @@ Registry make_registry(Config& c) {
   r.number("rig.restraint.ie_gap_deg", c.ie_gap_deg, 0, 45);
   r.number("rig.restraint.k_ie_inside_Nm_per_deg", c.k_ie_inside_Nm_per_deg, 0, 100);
   r.number("rig.restraint.k_ie_Nm_per_deg", c.k_ie_Nm_per_deg, 0, 100);
+  r.number("rig.alignment.femur_fe_axis_ap_mm", c.femur_fe_axis_ap_mm, -20, 20);
+  r.number("rig.alignment.femur_fe_axis_is_mm", c.femur_fe_axis_is_mm, -20, 20);
+  r.number("rig.alignment.tibia_ie_axis_ap_mm", c.tibia_ie_axis_ap_mm, -20, 20);
+  r.number("rig.alignment.tibia_ie_axis_ml_mm", c.tibia_ie_axis_ml_mm, -20, 20);
+  r.number("rig.alignment.femur_fe_deg", c.femur_fe_deg, -15, 15);
+  r.number("rig.alignment.femur_ie_deg", c.femur_ie_deg, -15, 15);
+  r.number("rig.alignment.insert_tilt_deg", c.insert_tilt_deg, -15, 15);
 
   r.text("gait.file", c.gait_file);
   r.text("gait.kinematics_file", c.kinematics_file);
@@ -423,6 +432,14 @@ std::filesystem::path resolve_path(const Config& config, const std::string& path
   std::filesystem::path out(p);
   if (out.is_relative() && !config.file.empty()) out = config.file.parent_path() / out;
   return out;
+}
+
+std::optional<NumberKey> find_number_key(const Config& config, const std::string& key) {
+  Config copy = config;
+  const Registry registry = make_registry(copy);
+  const Field* f = registry.find(key);
+  if (!f || !f->number) return std::nullopt;
+  return NumberKey{*f->number, f->lo, f->hi};
 }
 
 Config load_config(const std::filesystem::path& file, const std::vector<Override>& overrides) {

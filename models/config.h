@@ -10,6 +10,7 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,16 @@ struct Config {
   double spring_arm_mm = 35.0;             // lever arm of the AP springs from the IE axis [mm]
   double ie_gap_deg = 0.0;
   double k_ie_inside_Nm_per_deg = 0.0, k_ie_Nm_per_deg = 0.0;  // rotational restraint
+  // [rig.alignment]: how the implant sits in the rig, relative to the implant's own reference
+  // (0 = as built: the femoral FE axis through F's origin, the tibial IE axis at the rig's
+  // pivot, no rotations), so that any implant keeps Pal 2008's SDs (physics.md section 8)
+  double femur_fe_axis_ap_mm = 0.0;  // FE axis relative to the femoral component, + anterior [mm]
+  double femur_fe_axis_is_mm = 0.0;  // FE axis relative to the femoral component, + superior [mm]
+  double tibia_ie_axis_ap_mm = 0.0;  // IE (and VV) axis relative to the insert, + anterior [mm]
+  double tibia_ie_axis_ml_mm = 0.0;  // IE (and VV) axis relative to the rig pivot, + lateral [mm]
+  double femur_fe_deg = 0.0;  // femoral component on its carriage about +z, + flexion [deg]
+  double femur_ie_deg = 0.0;  // femoral component about +y (+ = external tibial rotation) [deg]
+  double insert_tilt_deg = 0.0;  // insert about +z through T's origin, + posterior slope [deg]
 
   // [gait]
   std::string gait_file;                   // waveform file ("" = shipped ISO 14243-1 approx.)
@@ -137,6 +148,13 @@ Config load_config(const std::filesystem::path& file, const std::vector<Override
 
 // parses "key=value" into an Override; throws InputError naming the text
 Override parse_override(const std::string& text);
+
+// a number key's value in `config` and its allowed range; nullopt when `key` is not a number
+// key (unknown, text, list); used by the studies to vary any key by name
+struct NumberKey {
+  double value = 0.0, lo = 0.0, hi = 0.0;
+};
+std::optional<NumberKey> find_number_key(const Config& config, const std::string& key);
 
 // ${KNEESIM_DATA} and ${KNEESIM_SOURCE} expansion, relative paths resolved against the config
 std::filesystem::path resolve_path(const Config& config, const std::string& path);

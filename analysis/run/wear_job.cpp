@@ -189,6 +189,17 @@ void check_wear_job(const WearJob& j) {
   }
 }
 
+wear::WearOptions make_wear_options(const WearJob& j, const models::BuiltModel& built) {
+  wear::WearOptions o;
+  o.total_cycles = j.cycles;
+  o.update_every = j.update_every;
+  o.schedule = j.schedule;
+  o.law = make_wear_law(j);
+  o.law.wear_factor = built.material.wear_factor_mm3_per_Nmm * wear::kWearFactorSI;
+  o.law.friction = built.model.contact.friction;
+  return o;
+}
+
 nlohmann::json run_wear_job(const WearJob& j) {
   namespace fs = std::filesystem;
   check_wear_job(j);
@@ -206,13 +217,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
   const models::MaterialConfig& mat = built.material;
   const double density_mg_per_mm3 = mat.density_g_per_cm3;  // g/cm^3 == mg/mm^3
 
-  wear::WearOptions o;
-  o.total_cycles = j.cycles;
-  o.update_every = j.update_every;
-  o.schedule = j.schedule;
-  o.law = make_wear_law(j);
-  o.law.wear_factor = mat.wear_factor_mm3_per_Nmm * wear::kWearFactorSI;
-  o.law.friction = built.model.contact.friction;
+  wear::WearOptions o = make_wear_options(j, built);
   o.checkpoint = j.out / "wear.checkpoint";
   o.resume = resume;
   o.identity = wear::fnv1a(j.identity_text.data(), j.identity_text.size());

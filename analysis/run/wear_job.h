@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "models/build_model.h"
 #include "models/config.h"
+#include "wear/wear_loop.h"
 
 namespace kneesim::run {
 
@@ -34,6 +36,10 @@ struct WearJob {
 // runs the job; returns the summary written to out/summary.json; throws InputError for bad
 // input and std::runtime_error when the simulation stops (what was complete is kept)
 nlohmann::json run_wear_job(const WearJob& job);
+
+// the wear loop's options of the job on its built model (law, factor, friction, intervals):
+// no outputs, checkpoint or progress; the studies run wear trials through it
+wear::WearOptions make_wear_options(const WearJob& job, const models::BuiltModel& built);
 
 // checks cycles, interval, schedule and wear factor; throws InputError with one sentence
 void check_wear_job(const WearJob& job);

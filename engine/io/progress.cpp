@@ -16,6 +16,11 @@ ProgressBar::ProgressBar(std::string label, double delay_s)
 
 ProgressBar::~ProgressBar() { finish(); }
 
+void ProgressBar::update(double fraction, const std::string& detail) {
+  detail_ = detail;
+  update(fraction);
+}
+
 void ProgressBar::update(double fraction) {
   if (!enabled_) return;
   const auto now = std::chrono::steady_clock::now();
@@ -28,15 +33,15 @@ void ProgressBar::update(double fraction) {
   constexpr int kWidth = 40;
   const int filled = static_cast<int>(fraction * kWidth);
   const double eta = fraction > 1e-6 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-  std::fprintf(stderr, "\r%s [%.*s%*s] %5.1f%%  %.0fs left ", label_.c_str(), filled,
+  std::fprintf(stderr, "\r%s [%.*s%*s] %5.1f%%  %.0fs left %s ", label_.c_str(), filled,
                "########################################", kWidth - filled, "",
-               100.0 * fraction, eta);
+               100.0 * fraction, eta, detail_.c_str());
   std::fflush(stderr);
 }
 
 void ProgressBar::finish() {
   if (enabled_ && drawn_) {
-    std::fprintf(stderr, "\r%*s\r", static_cast<int>(label_.size()) + 70, "");
+    std::fprintf(stderr, "\r%*s\r", static_cast<int>(label_.size() + detail_.size()) + 70, "");
     std::fflush(stderr);
     drawn_ = false;
   }

@@ -13,10 +13,13 @@ class ProgressBar {
   ~ProgressBar();
   // fraction in [0, 1]
   void update(double fraction);
+  // with a short text after the bar, e.g. "120/1000 trials, 2 failed"
+  void update(double fraction, const std::string& detail);
   void finish();
 
  private:
   std::string label_;
+  std::string detail_;
   double delay_s_;
   bool enabled_;
   bool drawn_ = false;

@@ -35,5 +35,6 @@ void add_wear_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_bor_command(CLI::App& app);
 void add_diagnose_command(CLI::App& app);
+void add_study_command(CLI::App& app);
 
 }  // namespace kneesim::cli

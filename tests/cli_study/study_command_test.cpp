@@ -93,8 +93,7 @@ TEST_CASE("kneesim study: bad input is refused with exit 2 before any trial runs
   for (const Case& c : {Case{{"--var", "rig.no_such=normal(1, 0.1)"}, "not a number key"},
                         Case{{"--var", "contact.friction=normal(nominal, 0)"}, "positive"},
                         Case{{"--var", "rig.restraint.k_anterior_N_per_mm=normal(4.75, 5)"},
-                             "--allow-truncation"},
-                        Case{{"--method", "sobol"}, "--method"}}) {
+                             "--allow-truncation"}}) {
     const fs::path out = tmp.path / "bad";
     const Result r = run_kneesim(study_args(out, "1", c.extra), tmp.path, "bad");
     CAPTURE(r.err);
@@ -103,6 +102,10 @@ TEST_CASE("kneesim study: bad input is refused with exit 2 before any trial runs
     CHECK_FALSE(fs::exists(out / "trials.csv"));
     CHECK_FALSE(fs::exists(out / "trials.journal.0"));
   }
+  const Result m = run_kneesim({"study", "--method", "sobol", "--out", (tmp.path / "m").string()},
+                               tmp.path, "method");
+  CHECK(m.exit_code == 2);
+  CHECK(m.err.find("--method") != std::string::npos);
   // allowed truncation runs and is reported
   const fs::path out = tmp.path / "truncated";
   const Result r = run_kneesim({"study", "--trials", "2", "--var",

@@ -31,7 +31,7 @@ def main():
 
     d = sys.argv[1]
     env = os.path.join(d, "envelopes.csv")
-    if os.path.exists(env):
+    if os.path.exists(env) and "ap_mm_p01" in read_columns_blank(env):
         cols = read_columns_blank(env)
         fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
         envelope_axes(ax1, cols, "gait_pct", "ap_mm", "AP, tibia anterior (mm)")
@@ -40,7 +40,7 @@ def main():
         fig.tight_layout()
         save_figure(fig, os.path.join(d, "envelopes.png"))
     wear = os.path.join(d, "wear_envelopes.csv")
-    if os.path.exists(wear):
+    if os.path.exists(wear) and "max_linear_wear_mm_p01" in read_columns_blank(wear):
         cols = read_columns_blank(wear)
         fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
         envelope_axes(ax1, cols, "cycles", "max_linear_wear_mm", "max linear wear (mm)")

@@ -408,12 +408,12 @@ BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
       engine::DofModel& d = cm.dofs[i];
       d.mode = parse_mode(modes[i]);
       if (carriage == 1 && i == 3 && m.gait.channel("vv_torque_Nm") >= 0 &&
-          (c.vv_torque_axial_arm_mm != 0.0 || c.vv_torque_stance_Nm != 0.0)) {
+          (c.vv_torque_axial_arm_mm != 0.0 || c.vv_torque_stance_arm_mm != 0.0)) {
         // the VV torque drives a free tibial VV (the rig's free DOF plus a torque)
         if (d.mode == engine::DofMode::kFree) d.mode = engine::DofMode::kForce;
         if (d.mode != engine::DofMode::kForce) {
           throw InputError(config_name(c) + ": gait.vv_torque_axial_arm_mm / "
-                           "vv_torque_stance_Nm need a free tibial VV (rig.tibia.vv = \"" +
+                           "vv_torque_stance_arm_mm need a free tibial VV (rig.tibia.vv = \"" +
                            modes[i] + "\"; allowed: \"free\" or \"force\")");
         }
       }

@@ -246,7 +246,7 @@ Registry make_registry(Config& c) {
   r.number("gait.ap_force_scale", c.ap_force_scale, 0, 10);
   r.number("gait.ie_torque_scale", c.ie_torque_scale, 0, 10);
   r.number("gait.vv_torque_axial_arm_mm", c.vv_torque_axial_arm_mm, -50, 50);
-  r.number("gait.vv_torque_stance_Nm", c.vv_torque_stance_Nm, -200, 200);
+  r.number("gait.vv_torque_stance_arm_mm", c.vv_torque_stance_arm_mm, -50, 50);
   r.text("gait.measured.file", c.measured_file);
   r.text("gait.measured.time_column", c.measured_time_column);
   r.choice("gait.measured.time_unit", c.measured_time_unit, {"", "s", "ms", "pct"});

@@ -102,10 +102,11 @@ struct Config {
   double ap_sign = 1.0, ie_sign = 1.0;     // sign conventions of the file's AP and IE channels
   double axial_force_scale = 1.0, ap_force_scale = 1.0, ie_torque_scale = 1.0;
   // varus-valgus torque on the tibial carriage (+ varus, loads the medial condyle), added to a
-  // free tibial VV DOF (which becomes force-driven): arm x axial force (the axial load line
-  // moved medially by the arm) plus amplitude x a stance-phase shape (build_model.h)
+  // free tibial VV DOF (which becomes force-driven): (arm + stance arm x a stance-phase shape)
+  // x axial force: the axial load line moved medially, constantly or following the stance
+  // phase (models/gait_assembly.h)
   double vv_torque_axial_arm_mm = 0.0;     // [mm]
-  double vv_torque_stance_Nm = 0.0;        // [N m]
+  double vv_torque_stance_arm_mm = 0.0;    // [mm]
 
   // [gait.measured]: a measured load table drives rig channels (loads/iso14243/measured_loads.h)
   std::string measured_file;               // table (CSV); "" = none

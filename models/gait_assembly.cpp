@@ -119,7 +119,7 @@ loads::Waveform make_gait(const Config& c, const loads::Waveform* measured_cycle
     }
     gait.merge(loads::cycle_waveform(loads, rig_names));
   }
-  return with_vv_torque(gait, c.vv_torque_axial_arm_mm, c.vv_torque_stance_Nm,
+  return with_vv_torque(gait, c.vv_torque_axial_arm_mm, c.vv_torque_stance_arm_mm,
                         c.axial_force_scale);
 }
 
@@ -127,20 +127,20 @@ double stance_vv_shape(double gait_pct) {
   return gait_pct >= 62.0 ? 0.0 : stance_shape().value(0, gait_pct);
 }
 
-loads::Waveform with_vv_torque(const loads::Waveform& gait, double arm_mm, double stance_Nm,
+loads::Waveform with_vv_torque(const loads::Waveform& gait, double arm_mm, double stance_arm_mm,
                                double axial_force_scale) {
-  if (arm_mm == 0.0 && stance_Nm == 0.0) return gait;
+  if (arm_mm == 0.0 && stance_arm_mm == 0.0) return gait;
   const int axial = gait.channel("axial_force_N");
   const int existing = gait.channel("vv_torque_Nm");
-  if (arm_mm != 0.0 && axial < 0) {
+  if (axial < 0) {
     throw InputError(gait.source() + ": a VV torque following the axial force needs an "
                      "axial_force_N channel.");
   }
   std::vector<double> pct, torque;
   for (int i = 0; i <= 400; ++i) {
     const double p = 0.25 * i;
-    double m = stance_Nm * stance_vv_shape(p);
-    if (arm_mm != 0.0) m += arm_mm * kMm * axial_force_scale * gait.value(axial, p);
+    const double lever_mm = arm_mm + stance_arm_mm * stance_vv_shape(p);
+    double m = lever_mm * kMm * axial_force_scale * gait.value(axial, p);
     if (existing >= 0) m += gait.value(existing, p);
     pct.push_back(p);
     torque.push_back(m);

@@ -29,6 +29,9 @@ bor::BorWearLaw law_of(Effect e) {
     case Effect::friction:
     case Effect::restraint:
     case Effect::load_convention: break;
+    case Effect::load_line:
+    case Effect::vv_moment:
+    case Effect::vv_alignment: break;
   }
   return bor::BorWearLaw::archard;
 }

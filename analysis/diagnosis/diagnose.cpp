@@ -611,7 +611,9 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   res.trivial = trivial_predictor(pb);
   // random-effect direction: d prediction / d ln(specimen parameter) (for depth this is not
   // the depth itself: depth grows less than proportionally with volume)
-  {
+  // (a case without baseline parameters, e.g. forces, has no specimen direction)
+  pb.dg = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows.size()));
+  if (c.specimen_param < static_cast<int>(c.baseline_params.size())) {
     Eigen::VectorXd b2 = res.baseline.params;
     b2[c.specimen_param] *= 1.01;
     const Eigen::VectorXd none;

@@ -95,6 +95,33 @@ const std::vector<EffectInfo>& library() {
          1.0, false, {}},
         {"ie_torque_shift_pct", "delay of the IE torque waveform [% of the cycle]", -25.0, 25.0,
          0.0, false, {}}}},
+      {Effect::load_line, "load_line",
+       "The medial-lateral split follows where the resultant load line crosses the tibia: a "
+       "wear rig fixes it by a medial offset of its axis, while in the patient the limb's "
+       "frontal-plane alignment and the adduction moment put it elsewhere; a constant shift "
+       "of the line moves a varus-valgus moment proportional to the axial force onto the "
+       "tibia.",
+       "tibial VV torque = d x axial force (load line moved medially by d)",
+       DataNeed::compartment_forces,
+       {{"load_line_shift_mm", "medial shift d of the axial load line [mm]", -15.0, 15.0, 0.0,
+         false, {-5.0, 5.0}}}},
+      {Effect::vv_moment, "vv_moment",
+       "In walking the external knee adduction moment (the ground reaction passing medial to "
+       "the knee) loads the medial compartment with its own time course: two stance peaks, "
+       "nothing in swing; its lever changes through stance, so the load line does not stay "
+       "where a wear rig fixes it.",
+       "tibial VV torque = A x stance shape x axial force (a load-line shift following the "
+       "stance phase: 0 at heel strike, peaks at 15 % and 47 %, 0 from 62 %)",
+       DataNeed::compartment_forces,
+       {{"vv_stance_arm_mm", "amplitude A of the stance load-line shift (+ medial) [mm]", -15.0,
+         15.0, 0.0, false, {-5.0, 5.0}}}},
+      {Effect::vv_alignment, "vv_alignment",
+       "A femoral component implanted or mounted in varus or valgus tilts the condyles in "
+       "the frontal plane, so one condyle meets the insert first and carries more of the "
+       "load.",
+       "femoral component VV angle a (locked femoral VV)", DataNeed::compartment_forces,
+       {{"femur_vv_deg", "femoral component VV alignment a (+ varus) [deg]", -5.0, 5.0, 0.0,
+         false, {-2.0, 2.0}}}},
   };
   return lib;
 }

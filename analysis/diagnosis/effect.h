@@ -23,6 +23,9 @@ enum class Effect {
   friction,                 // a different friction coefficient, visible in kinematics
   restraint,                // a different soft-tissue restraint (stiffness, gap), in kinematics
   load_convention,          // the applied AP force / IE torque differ in sign, scale or timing
+  load_line,                // the axial load line at another mediolateral position
+  vv_moment,                // a varus-valgus moment following the gait phase (stance)
+  vv_alignment,             // varus-valgus alignment of the femoral component
 };
 
 // what an effect needs to be identifiable
@@ -32,6 +35,7 @@ enum class DataNeed {
   depth_and_volume,       // penetration depth measured besides volume
   kinematic_conditions,   // two or more kinematic conditions (cross-shear ratios)
   kinematics,             // measured kinematics (AP, IE)
+  compartment_forces,     // measured medial and lateral contact forces
 };
 
 struct ParamSpec {

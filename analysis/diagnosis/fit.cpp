@@ -38,6 +38,11 @@ FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>
   ++out.evaluations;
   double cost = sum_sq(r);
   double lambda = 1e-3;
+  if (n == 0) {  // nothing to fit (a case without baseline parameters, candidate none)
+    out.params = start;
+    out.rss = cost;
+    return out;
+  }
   for (int iter = 0; iter < control.max_iterations && std::isfinite(cost); ++iter) {
     // forward-difference Jacobian in z
     Eigen::MatrixXd jac(r.size(), n);

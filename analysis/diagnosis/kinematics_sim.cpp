@@ -143,6 +143,9 @@ std::string KinematicsSimulator::equivalent_sets(Effect effect, const Eigen::Vec
     case Effect::cross_shear:
     case Effect::creep:
     case Effect::incubation: break;
+    case Effect::load_line:
+    case Effect::vv_moment:
+    case Effect::vv_alignment: break;
   }
   return "";
 }

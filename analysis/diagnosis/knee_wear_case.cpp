@@ -142,6 +142,9 @@ KneeWearParams knee_wear_params(Effect effect, const Eigen::VectorXd& b, const E
     case Effect::friction:
     case Effect::restraint:
     case Effect::load_convention: break;
+    case Effect::load_line:
+    case Effect::vv_moment:
+    case Effect::vv_alignment: break;
   }
   return p;
 }

@@ -54,6 +54,8 @@ SyntheticData make_synthetic_bor(diagnosis::Effect effect, std::uint64_t seed,
     case Effect::friction:
     case Effect::restraint:
     case Effect::load_convention: break;
+    case Effect::vv_moment:
+    case Effect::vv_alignment: break;
   }
 
   s.data.source = "synthetic-" + std::string(diagnosis::effect_name(effect)) + "-" +

@@ -86,6 +86,8 @@ KneeSynthetic make_synthetic_knee_wear(Effect effect, std::uint64_t seed, bool w
     case Effect::friction:
     case Effect::restraint:
     case Effect::load_convention: break;
+    case Effect::vv_moment:
+    case Effect::vv_alignment: break;
   }
   int row = 2;
   std::vector<diagnosis::Measurement> depth_rows;

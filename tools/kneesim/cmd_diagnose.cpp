@@ -12,6 +12,7 @@
 #include "engine/errors.h"
 #include "tools/kneesim/bor_options.h"
 #include "tools/kneesim/commands.h"
+#include "tools/kneesim/diagnose_forces.h"
 #include "tools/kneesim/diagnose_knee.h"
 #include "tools/kneesim/diagnose_options.h"
 
@@ -74,6 +75,7 @@ void add_diagnose_command(CLI::App& app) {
   add_diagnose_bor(diagnose);
   add_diagnose_knee_wear(diagnose);
   add_diagnose_kinematics(diagnose);
+  add_diagnose_forces(diagnose);
 }
 
 }  // namespace kneesim::cli

@@ -1,0 +1,203 @@
+#include "analysis/diagnosis/forces_diagnosis.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "analysis/diagnosis/diagnosis_output.h"
+#include "analysis/diagnosis/report.h"
+#include "engine/errors.h"
+#include "engine/io/json_out.h"
+#include "models/config.h"
+
+namespace kneesim::diagnosis {
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// effect parameters within 0.5 % of the searched range of a bound: the fit wants a value
+// outside the physically searched range, so it is flagged and not named
+std::vector<std::string> params_at_bound(const ModelFit& m) {
+  std::vector<std::string> out;
+  for (size_t i = 0; i < m.specs.size(); ++i) {
+    const ParamSpec& s = m.specs[i];
+    const double v = m.params[static_cast<Eigen::Index>(i)];
+    const double tol = 0.005 * (s.upper - s.lower);
+    if (v <= s.lower + tol || v >= s.upper - tol) out.push_back(s.name);
+  }
+  return out;
+}
+
+double rms(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  double ss = 0.0;
+  int n = 0;
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    if (std::isfinite(a[i]) && std::isfinite(b[i])) ss += (a[i] - b[i]) * (a[i] - b[i]), ++n;
+  }
+  return n > 0 ? std::sqrt(ss / n) : NAN;
+}
+
+}  // namespace
+
+ForcesDiagnosisReport diagnose_forces(const DiagnosisCase& c, ForcesSimulator& sim,
+                                      const std::vector<double>& total_N,
+                                      const DiagnosisOptions& options) {
+  ForcesDiagnosisReport rep;
+  DiagnosisResult& r = rep.result;
+  r = diagnose(c, options);
+  nlohmann::json& x = rep.extra;
+  // the bound rule: a selected fit at a search bound is flagged and the result is none
+  x["at_bound"] = nlohmann::json::object();
+  for (const ModelFit& m : r.candidates) {
+    const auto b = params_at_bound(m);
+    if (!b.empty()) x["at_bound"][std::string(effect_name(m.effect))] = b;
+  }
+  if (r.selected != 0) {
+    const ModelFit& none = r.candidates.front();
+    int pick = 0;
+    for (size_t i = 1; i < r.candidates.size(); ++i) {
+      const ModelFit& m = r.candidates[i];
+      const bool gates = m.aicc < none.aicc - options.ic_threshold &&
+                         m.heldout_rmse < (1.0 - options.heldout_threshold) * none.heldout_rmse;
+      if (gates && params_at_bound(m).empty() &&
+          (pick == 0 || m.heldout_rmse < r.candidates[static_cast<size_t>(pick)].heldout_rmse)) {
+        pick = static_cast<int>(i);
+      }
+    }
+    if (pick != r.selected) {
+      x["not_named_at_bound"] = std::string(effect_name(r.extended().effect));
+      r.selected = pick;  // none, or the best candidate within its bounds (not bootstrapped)
+      r.gain = r.baseline.heldout_rmse > 0.0
+                   ? 1.0 - r.extended().heldout_rmse / r.baseline.heldout_rmse
+                   : 0.0;
+    }
+  }
+  // the trivial predictor: the training cycle's mean measured share x the measured total
+  const double trivial = trivial_heldout_rmse(c, total_N);
+  x["trivial_predictor"] = "mean measured medial share of the training rows (load-weighted) x "
+                           "the row's measured total force";
+  x["trivial_heldout_rmse"] = trivial;
+  x["gain_vs_trivial"] = trivial > 0.0 ? 1.0 - r.extended().heldout_rmse / trivial : 0.0;
+  x["baseline_gain_vs_trivial"] = trivial > 0.0 ? 1.0 - r.baseline.heldout_rmse / trivial : 0.0;
+  // the grid surrogate against a direct simulation at the fitted value
+  const ModelFit& e = r.extended();
+  if (e.effect != Effect::none && e.params.size() > 0) {
+    Eigen::VectorXd direct(static_cast<Eigen::Index>(c.measured.rows.size()));
+    for (size_t i = 0; i < c.measured.rows.size(); ++i) {
+      const auto& row = c.measured.rows[i];
+      int k = 0;
+      for (int j = 0; j < sim.cycles(); ++j) {
+        if (sim.cycle(j).name == row.group) k = j;
+      }
+      const auto trace = sim.run(e.effect, e.params[0], k);
+      direct[static_cast<Eigen::Index>(i)] = trace->ok ? trace->at(true, row.x) : NAN;
+    }
+    x["surrogate_rms_N"] = rms(direct, e.predictions);
+    Eigen::VectorXd y(direct.size());
+    for (size_t i = 0; i < c.measured.rows.size(); ++i) {
+      y[static_cast<Eigen::Index>(i)] = c.measured.rows[i].value;
+    }
+    x["direct_rmse_N"] = rms(direct, y);
+    x["forward"] = "kneesim run CONFIG " + sim.equivalent_sets(e.effect, e.params[0]);
+  }
+  // medial share per cycle: measured, baseline, extended (stance rows with a total above
+  // 20 % of the cycle's peak, where the share is defined well)
+  x["medial_share"] = nlohmann::json::object();
+  for (int k = 0; k < sim.cycles(); ++k) {
+    const std::string name = sim.cycle(k).name;
+    double peak = 0.0;
+    for (size_t i = 0; i < c.measured.rows.size(); ++i) {
+      if (c.measured.rows[i].group == name) peak = std::max(peak, total_N[i]);
+    }
+    double m = 0.0, b = 0.0, ex = 0.0, t = 0.0;
+    for (size_t i = 0; i < c.measured.rows.size(); ++i) {
+      if (c.measured.rows[i].group != name || total_N[i] < 0.2 * peak) continue;
+      m += c.measured.rows[i].value;
+      b += r.baseline.predictions[static_cast<Eigen::Index>(i)];
+      ex += e.predictions[static_cast<Eigen::Index>(i)];
+      t += total_N[i];
+    }
+    if (t > 0.0) {
+      x["medial_share"][name] = {{"measured", m / t}, {"baseline", b / t}, {"extended", ex / t}};
+    }
+  }
+  return rep;
+}
+
+ForcesDiagnosisReport run_forces_diagnosis(const ForcesDiagnosisOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (o.case_options.grid_points < 4 || o.case_options.grid_points > 41) {
+    throw InputError("command line: --grid-points = " + std::to_string(o.case_options.grid_points) +
+                     " is outside the allowed range [4, 41].");
+  }
+  if (o.threads < 1 || o.threads > 256) {
+    throw InputError("command line: --threads = " + std::to_string(o.threads) +
+                     " is outside the allowed range [1, 256].");
+  }
+  std::vector<models::Override> overrides;
+  for (const auto& s : o.sets) overrides.push_back(models::parse_override(s));
+  const models::Config config = models::load_config(o.config, overrides);
+  ForcesMeasured measured = read_forces_measured(config, o.measured);
+  auto sim = std::make_shared<ForcesSimulator>(config, measured.cycles);
+  sim->set_threads(o.threads);
+  const DiagnosisCase c = make_forces_case(measured, sim, o.case_options);
+  ForcesDiagnosisReport rep = diagnose_forces(c, *sim, measured.total_N, o.options);
+  const DiagnosisResult& r = rep.result;
+  rep.summary_line = write_diagnosis(c, r, o.out);
+  // the forces keys beside the shared ones in diagnosis.json
+  {
+    nlohmann::json j = diagnosis_json(c, r);
+    for (auto it = rep.extra.begin(); it != rep.extra.end(); ++it) j["forces"][it.key()] = it.value();
+    j["gain_vs_trivial"] = rep.extra["gain_vs_trivial"];
+    io::write_json(std::filesystem::path(o.out) / "diagnosis.json", j);
+  }
+  const nlohmann::json& x = rep.extra;
+  std::string md = "## Forces: medial share, trivial predictor, surrogate check\n\n";
+  md += "Medial share of the axial force in stance (rows above 20 % of the cycle's peak "
+        "total):\n\n| cycle | measured | baseline | extended |\n|---|---|---|---|\n";
+  for (auto it = x["medial_share"].begin(); it != x["medial_share"].end(); ++it) {
+    md += "| " + it.key() + " | " + fmt("%.3f", it.value()["measured"].get<double>()) + " | " +
+          fmt("%.3f", it.value()["baseline"].get<double>()) + " | " +
+          fmt("%.3f", it.value()["extended"].get<double>()) + " |\n";
+  }
+  md += "\nTrivial predictor (" + x["trivial_predictor"].get<std::string>() + "): held-out RMSE " +
+        fmt("%.1f", x["trivial_heldout_rmse"].get<double>()) + " N; gain of the extension against "
+        "it " + fmt("%.3f", x["gain_vs_trivial"].get<double>()) + " (baseline against it " +
+        fmt("%.3f", x["baseline_gain_vs_trivial"].get<double>()) + ").\n";
+  if (!x["at_bound"].empty()) {
+    md += "\nFits at a search bound (flagged, never named): " + x["at_bound"].dump() + ".\n";
+  }
+  if (x.contains("not_named_at_bound")) {
+    md += "\nThe best candidate, " + x["not_named_at_bound"].get<std::string>() +
+          ", ended at a search bound and is not named.\n";
+  }
+  if (x.contains("surrogate_rms_N")) {
+    md += "\nThe fits interpolate between " + std::to_string(o.case_options.grid_points) +
+          " full simulations per candidate and cycle; a direct simulation at the fitted value "
+          "differs from the interpolation by " + fmt("%.2f", x["surrogate_rms_N"].get<double>()) +
+          " N RMS (its RMSE against the measurement: " +
+          fmt("%.1f", x["direct_rmse_N"].get<double>()) + " N). Forward: `" +
+          x["forward"].get<std::string>() + "`.\n";
+  }
+  md += "\n" + std::to_string(sim->simulations()) + " rig simulations of " +
+        std::to_string(config.cycles) + " gait cycles each (" + fmt("%.1f", sim->seconds()) +
+        " s wall, " + std::to_string(o.threads) + " at a time; model build " +
+        fmt("%.1f", sim->build_seconds()) + " s; total " + fmt("%.1f", seconds_since(t0)) +
+        " s).\n";
+  append_report(o.out, md);
+  rep.simulations = sim->simulations();
+  rep.sim_seconds = sim->seconds();
+  rep.total_seconds = seconds_since(t0);
+  return rep;
+}
+
+}  // namespace kneesim::diagnosis

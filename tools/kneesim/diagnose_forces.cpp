@@ -1,0 +1,54 @@
+#include "tools/kneesim/diagnose_forces.h"
+
+#include <cstdio>
+#include <memory>
+
+#include "analysis/diagnosis/forces_diagnosis.h"
+#include "tools/kneesim/diagnose_options.h"
+
+namespace kneesim::cli {
+namespace {
+
+struct DiagnoseForcesOptions {
+  diagnosis::ForcesDiagnosisOptions run;
+  DiagnoseCommonOptions common;
+};
+
+void run_diagnose_forces(DiagnoseForcesOptions o) {
+  o.run.options = make_diagnosis_options(o.common);
+  o.run.out = o.common.out;
+  const diagnosis::ForcesDiagnosisReport r = diagnosis::run_forces_diagnosis(o.run);
+  std::printf("%s", r.summary_line.c_str());
+  std::printf("forces: gain against the trivial predictor (mean measured share) %.3f; %d "
+              "simulations in %.1f s, total %.1f s\n",
+              r.extra["gain_vs_trivial"].get<double>(), r.simulations, r.sim_seconds,
+              r.total_seconds);
+}
+
+}  // namespace
+
+void add_diagnose_forces(CLI::App* diagnose) {
+  auto opt = std::make_shared<DiagnoseForcesOptions>();
+  opt->common.out = "out/diagnose-forces";
+  opt->run.config = std::string(KNEESIM_SOURCE_DIR) + "/models/examples/jw_measured_loads.toml";
+  CLI::App* cmd = diagnose->add_subcommand(
+      "forces", "medial and lateral compartment forces of an instrumented knee (e.g. the Grand "
+                "Challenge JW tray) against the rig driven by the same measured loads; the "
+                "config's [gait.measured] names the columns, units and the cycle window");
+  cmd->add_option("--measured", opt->run.measured,
+                  "measured table (default: the config's gait.measured.file)");
+  cmd->add_option("--config", opt->run.config,
+                  "TOML config of the rig, implant and [gait.measured] columns")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--set", opt->run.sets, "override a config key (repeatable)");
+  cmd->add_option("--grid-points", opt->run.case_options.grid_points,
+                  "full simulations per candidate and cycle across its parameter bounds")
+      ->capture_default_str();
+  cmd->add_option("--threads", opt->run.threads, "simulations run at a time")
+      ->capture_default_str();
+  add_diagnose_common_options(cmd, opt->common);
+  cmd->callback([opt] { run_diagnose_forces(*opt); });
+}
+
+}  // namespace kneesim::cli

@@ -160,7 +160,9 @@ std::string ForcesSimulator::equivalent_sets(Effect effect, double value) const 
     case Effect::pressure_dependent_wear:
     case Effect::cross_shear:
     case Effect::creep:
-    case Effect::restraint: break;
+    case Effect::incubation:
+    case Effect::restraint:
+    case Effect::load_convention: break;
   }
   return "";
 }

@@ -54,6 +54,7 @@ SyntheticData make_synthetic_bor(diagnosis::Effect effect, std::uint64_t seed,
     case Effect::friction:
     case Effect::restraint:
     case Effect::load_convention: break;
+    case Effect::load_line:
     case Effect::vv_moment:
     case Effect::vv_alignment: break;
   }

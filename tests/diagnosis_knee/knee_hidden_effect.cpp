@@ -86,6 +86,7 @@ KneeSynthetic make_synthetic_knee_wear(Effect effect, std::uint64_t seed, bool w
     case Effect::friction:
     case Effect::restraint:
     case Effect::load_convention: break;
+    case Effect::load_line:
     case Effect::vv_moment:
     case Effect::vv_alignment: break;
   }

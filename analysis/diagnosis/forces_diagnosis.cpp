@@ -24,19 +24,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// effect parameters within 0.5 % of the searched range of a bound: the fit wants a value
-// outside the physically searched range, so it is flagged and not named
-std::vector<std::string> params_at_bound(const ModelFit& m) {
-  std::vector<std::string> out;
-  for (size_t i = 0; i < m.specs.size(); ++i) {
-    const ParamSpec& s = m.specs[i];
-    const double v = m.params[static_cast<Eigen::Index>(i)];
-    const double tol = 0.005 * (s.upper - s.lower);
-    if (v <= s.lower + tol || v >= s.upper - tol) out.push_back(s.name);
-  }
-  return out;
-}
-
 double rms(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   double ss = 0.0;
   int n = 0;
@@ -55,31 +42,14 @@ ForcesDiagnosisReport diagnose_forces(const DiagnosisCase& c, ForcesSimulator& s
   DiagnosisResult& r = rep.result;
   r = diagnose(c, options);
   nlohmann::json& x = rep.extra;
-  // the bound rule: a selected fit at a search bound is flagged and the result is none
+  // the bound rule lives in diagnose() (find_params_at_bound): a fit at a search bound was
+  // flagged there and not selected; listed here by parameter name for the report
   x["at_bound"] = nlohmann::json::object();
   for (const ModelFit& m : r.candidates) {
-    const auto b = params_at_bound(m);
-    if (!b.empty()) x["at_bound"][std::string(effect_name(m.effect))] = b;
-  }
-  if (r.selected != 0) {
-    const ModelFit& none = r.candidates.front();
-    int pick = 0;
-    for (size_t i = 1; i < r.candidates.size(); ++i) {
-      const ModelFit& m = r.candidates[i];
-      const bool gates = m.aicc < none.aicc - options.ic_threshold &&
-                         m.heldout_rmse < (1.0 - options.heldout_threshold) * none.heldout_rmse;
-      if (gates && params_at_bound(m).empty() &&
-          (pick == 0 || m.heldout_rmse < r.candidates[static_cast<size_t>(pick)].heldout_rmse)) {
-        pick = static_cast<int>(i);
-      }
-    }
-    if (pick != r.selected) {
-      x["not_named_at_bound"] = std::string(effect_name(r.extended().effect));
-      r.selected = pick;  // none, or the best candidate within its bounds (not bootstrapped)
-      r.gain = r.baseline.heldout_rmse > 0.0
-                   ? 1.0 - r.extended().heldout_rmse / r.baseline.heldout_rmse
-                   : 0.0;
-    }
+    if (m.at_bound.empty()) continue;
+    std::vector<std::string> names;
+    for (int i : m.at_bound) names.push_back(m.specs[static_cast<size_t>(i)].name);
+    x["at_bound"][std::string(effect_name(m.effect))] = names;
   }
   // the trivial predictor: the training cycle's mean measured share x the measured total
   const double trivial = trivial_heldout_rmse(c, total_N);
@@ -175,10 +145,6 @@ ForcesDiagnosisReport run_forces_diagnosis(const ForcesDiagnosisOptions& o) {
         fmt("%.3f", x["baseline_gain_vs_trivial"].get<double>()) + ").\n";
   if (!x["at_bound"].empty()) {
     md += "\nFits at a search bound (flagged, never named): " + x["at_bound"].dump() + ".\n";
-  }
-  if (x.contains("not_named_at_bound")) {
-    md += "\nThe best candidate, " + x["not_named_at_bound"].get<std::string>() +
-          ", ended at a search bound and is not named.\n";
   }
   if (x.contains("surrogate_rms_N")) {
     md += "\nThe fits interpolate between " + std::to_string(o.case_options.grid_points) +

@@ -10,20 +10,15 @@
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/journal_file.h"
+#include "wear/checkpoint.h"
 
 namespace kneesim::study {
 namespace {
 
 constexpr const char* kHeader = "# kneesim study journal v1 identity=";
 
-uint64_t fnv1a(const std::string& s) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
+// FNV-1a of a string through the checkpoint's hash (wear/checkpoint.h)
+uint64_t fnv1a(const std::string& s) { return wear::fnv1a(s.data(), s.size()); }
 
 void put(std::string& out, double v) {
   char buf[40];

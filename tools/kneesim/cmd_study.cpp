@@ -10,6 +10,7 @@
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
 #include "tools/kneesim/commands.h"
+#include "wear/checkpoint.h"
 
 namespace kneesim::cli {
 namespace {
@@ -25,14 +26,8 @@ struct StudyArgs {
   bool quiet = false;
 };
 
-uint64_t fnv1a(const std::string& s) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
+// FNV-1a of a string through the checkpoint's hash (wear/checkpoint.h)
+uint64_t fnv1a(const std::string& s) { return wear::fnv1a(s.data(), s.size()); }
 
 void run(const StudyArgs& a) {
   study::Ranks ranks;  // MPI when launched by mpirun

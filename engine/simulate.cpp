@@ -1,5 +1,6 @@
 #include "engine/simulate.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/reference_integrator.h"
@@ -66,6 +67,35 @@ RunResult simulate(const Model& model, State& state, Data& data, const RunOption
   result.steps = state.step;
   result.evaluations = data.evaluations;
   return result;
+}
+
+double find_step_for_frequency(const Model& model, double omega, double safety) {
+  const double z = 0.5 * model.contact.damping_beta * omega;
+  return safety * 2.0 / omega * (std::sqrt(1.0 + z * z) - z);
+}
+
+double find_whole_cycle_step(const Model& model, double dt) {
+  return model.period / std::ceil(model.period / dt);
+}
+
+RunResult simulate_with_retry(Model& model, State& state, const RunOptions& options,
+                              double dt_safety, int max_retries,
+                              const std::function<void()>& before_attempt) {
+  for (int attempt = 0;; ++attempt) {
+    if (before_attempt) before_attempt();
+    State trial = state;
+    Data data = make_data(model);
+    RunResult run = simulate(model, trial, data, options);
+    if (run.status == StepStatus::kUnstableStep && attempt < max_retries &&
+        run.omega_max > 0.0) {
+      model.dt = find_whole_cycle_step(
+          model, std::min(model.dt, find_step_for_frequency(model, run.omega_max, dt_safety)));
+      continue;
+    }
+    run.step_retries = attempt;
+    state = trial;
+    return run;
+  }
 }
 
 }  // namespace kneesim::engine

@@ -42,10 +42,28 @@ struct RunResult {
   long evaluations = 0;               // contact element evaluations
   double max_stability_ratio = 0.0;   // max over steps of omega_max dt / limit (< 1 stable)
   double omega_max = 0.0;             // highest contact frequency met [rad/s]
+  int step_retries = 0;               // runs repeated with a shorter step (simulate_with_retry)
 };
 
 Frame make_frame(const State& state, const Data& data);
 
 RunResult simulate(const Model& model, State& state, Data& data, const RunOptions& options);
+
+// the largest step with fraction `safety` of the central-difference limit for a contact
+// frequency omega [rad/s] under the model's contact damping [s]
+double find_step_for_frequency(const Model& model, double omega, double safety);
+
+// the longest step not above `dt` that fits a whole number of times in the gait period [s]
+double find_whole_cycle_step(const Model& model, double dt);
+
+// simulate() with a fresh Data; the stable step is estimated before the run from a few static
+// poses, and a contact area or load the estimate did not sample can stiffen the contact beyond
+// it: when the stability monitor trips, the run is repeated from the same start state with the
+// step the measured frequency allows (model.dt, a whole number per cycle), at most
+// `max_retries` times. `state` advances only on the returned run; `before_attempt` (may be
+// empty) resets what the observer accumulates.
+RunResult simulate_with_retry(Model& model, State& state, const RunOptions& options,
+                              double dt_safety, int max_retries = 4,
+                              const std::function<void()>& before_attempt = {});
 
 }  // namespace kneesim::engine

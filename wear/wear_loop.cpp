@@ -84,17 +84,6 @@ std::string check_update_record(const UpdateRecord& r, bool closed_insert) {
 
 namespace {
 
-// the largest step with the given safety for a contact frequency omega [rad/s]
-double stable_step_for(const engine::Model& model, double omega, double safety) {
-  const double z = 0.5 * model.contact.damping_beta * omega;
-  return safety * 2.0 / omega * (std::sqrt(1.0 + z * z) - z);
-}
-
-// a whole number of steps per cycle, never longer than `dt`
-void set_time_step(engine::Model& model, double dt) {
-  model.dt = model.period / std::ceil(model.period / dt);
-}
-
 // first articular vertex whose height above the base fell below 10 % of its pristine height,
 // or -1
 int find_worn_through_vertex(const models::BuiltModel& pristine, const models::TriMesh& worn) {
@@ -109,35 +98,25 @@ int find_worn_through_vertex(const models::BuiltModel& pristine, const models::T
 // stability ratio above which the next update gets a shorter step
 constexpr double kStabilityHeadroom = 0.9;
 
-
 // one gait cycle on the current geometry from `state` (advanced on success); wear makes the
 // insert more conforming and the contact stiffer, so when the stability monitor trips the cycle
 // is repeated with the step the measured frequency allows, and a cycle close to the limit
 // shortens the step of the next one. `acc` (may be null) accumulates the cycle's wear depth.
 engine::RunResult simulate_cycle(engine::Model& model, engine::State& state, double dt_safety,
                                  const WearLawParams& law, WearAccumulator* acc) {
-  engine::RunResult run;
-  for (int attempt = 0;; ++attempt) {
-    engine::State trial = state;
-    engine::Data data = engine::make_data(model);
-    if (acc) *acc = WearAccumulator(model.insert.size(), law);
-    engine::RunOptions ro;
-    ro.cycles = 1;
-    if (acc) {
-      ro.observer = [acc](const engine::Model& m, const engine::State& s,
-                          const engine::Data& d) { acc->observe(m, s, d); };
-    }
-    run = engine::simulate(model, trial, data, ro);
-    if (run.status == engine::StepStatus::kUnstableStep && attempt < 4) {
-      set_time_step(model, stable_step_for(model, run.omega_max, dt_safety));
-      continue;
-    }
-    state = trial;
-    break;
+  engine::RunOptions ro;
+  ro.cycles = 1;
+  std::function<void()> reset;
+  if (acc) {
+    ro.observer = [acc](const engine::Model& m, const engine::State& s,
+                        const engine::Data& d) { acc->observe(m, s, d); };
+    reset = [acc, &model, &law] { *acc = WearAccumulator(model.insert.size(), law); };
   }
+  const engine::RunResult run = engine::simulate_with_retry(model, state, ro, dt_safety, 4, reset);
   if (run.status == engine::StepStatus::kOk && run.max_stability_ratio > kStabilityHeadroom) {
-    set_time_step(model,
-                  std::min(model.dt, stable_step_for(model, run.omega_max, dt_safety)));
+    model.dt = engine::find_whole_cycle_step(
+        model, std::min(model.dt, engine::find_step_for_frequency(model, run.omega_max,
+                                                                  dt_safety)));
   }
   return run;
 }
@@ -192,11 +171,12 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
     // kinematics are not those of a settled cycle (the AP range differs by about 5 %), so it is
     // reported nowhere: row 0 (cycle 0, the pristine insert) takes the figures of the first
     // wear cycle, which runs on the pristine insert from the settled state, as `kneesim run`
-    // reports its last cycle
-    engine::Data data = engine::make_data(model);
+    // reports its last cycle; from rest the contact can stiffen beyond the estimated limit,
+    // so it gets the step retry too
     engine::RunOptions ro;
     ro.cycles = 1;
-    const engine::RunResult run = engine::simulate(model, state, data, ro);
+    const engine::RunResult run =
+        engine::simulate_with_retry(model, state, ro, pristine.dt_safety);
     if (run.status != engine::StepStatus::kOk) {
       result.status = run.status;
       result.message = engine::to_string(run.status);

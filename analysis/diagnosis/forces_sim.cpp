@@ -129,11 +129,11 @@ std::shared_ptr<const ForcesTrace> ForcesSimulator::simulate(Effect effect, doub
     engine::position_femur_statically(model, s, d, std::max(load0, 1.0));
     femur_is.initial = s.carriages[0].pivot_W.y() - model.carriages[0].pivot0_W.y();
   }
+  // the gait run's step retry at the stability limit (analysis/run)
   engine::State state = engine::make_initial_state(model);
-  engine::Data data = engine::make_data(model);
   engine::RunOptions ro;
   ro.cycles = config_.cycles;
-  const engine::RunResult r = engine::simulate(model, state, data, ro);
+  const engine::RunResult r = engine::simulate_with_retry(model, state, ro, built_.dt_safety);
 
   auto trace = std::make_shared<ForcesTrace>();
   trace->ok = r.status == engine::StepStatus::kOk && !r.frames.empty();

@@ -90,11 +90,14 @@ std::shared_ptr<const KinematicsTrace> KinematicsSimulator::run(Effect effect,
       if (s.kind == engine::RestraintKind::kTranslational) s.gap = params[1] * 1e-3;
     }
   }
+  // the gait run's step retry at the stability limit (analysis/run); the shortened step is
+  // this evaluation's only, the next starts from the estimated one
   engine::State state = engine::make_initial_state(model);
-  engine::Data data = engine::make_data(model);
   engine::RunOptions ro;
   ro.cycles = config_.cycles;
-  const engine::RunResult r = engine::simulate(model, state, data, ro);
+  const double dt_estimated = model.dt;
+  const engine::RunResult r = engine::simulate_with_retry(model, state, ro, built_.dt_safety);
+  model.dt = dt_estimated;
 
   auto trace = std::make_shared<KinematicsTrace>();
   trace->ok = r.status == engine::StepStatus::kOk && !r.frames.empty();

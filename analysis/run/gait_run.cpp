@@ -53,6 +53,11 @@ models::Config load_run_config(const std::string& path, const std::vector<std::s
   return models::load_config(path, overrides);
 }
 
+engine::RunResult simulate_gait(models::BuiltModel& built, const engine::RunOptions& options) {
+  engine::State state = engine::make_initial_state(built.model);
+  return engine::simulate_with_retry(built.model, state, options, built.dt_safety);
+}
+
 GaitRunReport run_gait_job(const GaitRunJob& job) {
   namespace fs = std::filesystem;
   const models::Config& config = job.config;
@@ -69,13 +74,10 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
         config.implant_kind == "mesh" ? p_FR_F : Eigen::Vector3d::Zero());
   }
   models::BuiltModel built = models::build_model(config);
-  const engine::Model& model = built.model;
   if (job.on_built) job.on_built(built);
   clear_outputs(out);
   fs::create_directories(out);
 
-  engine::State state = engine::make_initial_state(model);
-  engine::Data data = engine::make_data(model);
   engine::RunOptions options;
   options.cycles = config.cycles;
   options.map_pcts = config.map_pcts;
@@ -83,7 +85,8 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   io::ProgressBar bar("simulating");
   if (!job.quiet) options.progress = [&bar](double f) { bar.update(f); };
   const auto t0 = std::chrono::steady_clock::now();
-  const engine::RunResult result = engine::simulate(model, state, data, options);
+  const double dt_estimated = built.model.dt;
+  const engine::RunResult result = simulate_gait(built, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   bar.finish();
 
@@ -93,6 +96,9 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   summary["seconds"] = seconds;
   summary["seconds_per_cycle"] = seconds / config.cycles;
   summary["max_stability_ratio"] = result.max_stability_ratio;
+  // a run repeated with a shorter step says so (dt_s is the step it ran with)
+  summary["step_retries"] = result.step_retries;
+  if (result.step_retries > 0) summary["dt_estimated_s"] = dt_estimated;
   summary["element_evaluations_per_step"] =
       static_cast<double>(result.evaluations) / std::max(1L, result.steps);
   if (result.status != engine::StepStatus::kOk) {
@@ -110,7 +116,7 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   for (size_t i = 0; i < result.maps.size(); ++i) {
     char name[64];
     std::snprintf(name, sizeof name, "pressure_%03.0fpct.vtp", options.map_pcts[i]);
-    write_pressure_map(out / name, model.insert, result.maps[i]);
+    write_pressure_map(out / name, built.model.insert, result.maps[i]);
   }
   GaitRunReport report;
   report.figures = calc_cycle_figures(result.frames);

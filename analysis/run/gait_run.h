@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/run/run_outputs.h"
+#include "engine/simulate.h"
 #include "models/build_model.h"
 #include "models/config.h"
 
@@ -32,6 +33,11 @@ struct GaitRunReport {
   CycleFigures figures;     // of the last cycle
   double seconds = 0.0;     // simulation wall time [s]
 };
+
+// the gait cycles of a run from the Model's initial state, with engine::simulate_with_retry's
+// step retry at the stability limit (built.model.dt keeps the step that worked; the result
+// counts the retries); shared by `kneesim run`, the studies and the diagnoses
+engine::RunResult simulate_gait(models::BuiltModel& built, const engine::RunOptions& options);
 
 // runs the job and writes its outputs (summary.json last: its presence marks a complete run);
 // on numerical trouble writes kinematics.partial.csv and summary.failed.json and throws

@@ -70,14 +70,19 @@ StudyProblem make_knee_problem(const KneeStudySetup& s) {
     std::vector<std::string> sets = s.sets;
     for (size_t j = 0; j < vars.size(); ++j) sets.push_back(vars[j].key + "=" + value_text(x[j]));
     const models::Config config = run::load_run_config(s.config, sets);
-    const models::BuiltModel built = models::build_model(config, nominal.get());
+    models::BuiltModel built = models::build_model(config, nominal.get());
     TrialOutcome out;
-    // one gait run: the measures of the last cycle
-    engine::State state = engine::make_initial_state(built.model);
-    engine::Data data = engine::make_data(built.model);
+    // one gait run (the step shortened where the contact outgrew the estimated limit, as
+    // `kneesim run` does): the measures of the last cycle
+    const double dt_estimated = built.model.dt;
     engine::RunOptions ro;
     ro.cycles = config.cycles;
-    const engine::RunResult r = engine::simulate(built.model, state, data, ro);
+    const engine::RunResult r = run::simulate_gait(built, ro);
+    if (r.step_retries > 0) {
+      out.note = "step shortened " + std::to_string(r.step_retries) + "x at the stability "
+                 "limit: dt " + value_text(dt_estimated) + " s to " + value_text(built.model.dt) +
+                 " s";
+    }
     if (r.status != engine::StepStatus::kOk) {
       out.ok = false;
       out.failure = std::string("gait run stopped at t = ") + value_text(r.failed_at) + " s: " +

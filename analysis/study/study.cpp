@@ -56,7 +56,7 @@ TrialRecord evaluate(const StudyProblem& p, const PlannedTrial& t) {
     o.failure = e.what();
   }
   r.ok = o.ok;
-  r.failure = o.failure;
+  r.failure = o.ok ? o.note : o.failure;
   if (o.ok && o.scalars.size() == p.measures.size() && o.curves.size() == p.curves.size()) {
     r.scalars = o.scalars;
     r.curves = o.curves;

@@ -26,7 +26,8 @@ namespace kneesim::study {
 // what one evaluation returns
 struct TrialOutcome {
   bool ok = true;
-  std::string failure;
+  std::string failure;                       // why it stopped (ok = false)
+  std::string note;                          // a remark on an ok trial (e.g. a shortened step)
   std::vector<double> scalars;               // one per StudyProblem::measures
   std::vector<std::vector<double>> curves;   // one per StudyProblem::curves
 };

@@ -41,7 +41,11 @@ std::string trials_csv(const StudyProblem& p, const StudyOptions& o, const Study
     std::string why = t.failure;
     for (char& c : why)
       if (c == ',' || c == '\n' || c == '"') c = ' ';
-    s += t.ok ? ",ok\n" : ",failed: " + why + "\n";
+    if (t.ok) {
+      s += why.empty() ? ",ok\n" : ",ok: " + why + "\n";
+    } else {
+      s += ",failed: " + why + "\n";
+    }
   }
   return s;
 }

@@ -26,7 +26,8 @@ struct TrialRecord {
   std::vector<double> scalars;            // one per scalar measure (NaN when failed)
   std::vector<std::vector<double>> curves;  // one per curve, its samples (empty when failed)
   bool ok = true;
-  std::string failure;                    // why the trial stopped (numerical trouble)
+  std::string failure;                    // why the trial stopped (numerical trouble), or
+                                          // an ok trial's remark
 };
 
 std::string journal_header(uint64_t identity);

@@ -2,12 +2,13 @@
 // References: the report's own closed forms (dt_critical = 2/omega_max (sqrt(1 + z^2) - z),
 // omega_max^2 = K/m of the governing DOF, dt = safety * dt_critical, beta = 2 z / omega_max),
 // and the contact tangent stiffness against a central finite difference of the contact force.
-// (That the chosen step runs stably is shown by default_run_test.cpp; the scheme's limit
-// 2/omega itself by integrator_test.cpp.)
+// Last, the step retry of engine::simulate_with_retry. (That the chosen step runs stably is
+// shown by default_run_test.cpp; the scheme's limit 2/omega itself by integrator_test.cpp.)
 #include <doctest/doctest.h>
 
 #include <cmath>
 
+#include "engine/simulate.h"
 #include "engine/stable_step.h"
 #include "engine/step.h"
 #include "engine_fixtures.h"
@@ -111,4 +112,52 @@ TEST_CASE("stable step of restraint springs alone: closed forms") {
     CHECK(r.omega_max == doctest::Approx(400.0).epsilon(1e-12));
     CHECK(r.dt_critical == doctest::Approx(2.0 / 400.0 * (std::sqrt(1.0 + z * z) - z)).epsilon(1e-12));
   }
+}
+
+TEST_CASE("simulate_with_retry: a step beyond the limit is shortened to the measured frequency") {
+  // a step 3x the estimated limit trips the stability monitor (step.h: omega_max dt above the
+  // central-difference limit); the retry repeats the cycle from the same start state with the
+  // step the measured frequency allows. References: the retried run is bit-identical to a
+  // plain simulate() with the step it reports (the retry changes nothing but the step), that
+  // step is a whole number per period and at most dt_safety of the limit of the measured
+  // frequency, and with no retries allowed the failure is returned as it is.
+  const models::BuiltModel built =
+      models::build_model(test::default_config({"implant.edge_length_mm=3"}));
+  engine::Model too_long = built.model;
+  too_long.dt = engine::find_whole_cycle_step(too_long, 3.0 * built.stable_step.dt_critical);
+  engine::RunOptions ro;
+  ro.cycles = 1;
+
+  engine::Model no_retry = too_long;
+  engine::State s0 = engine::make_initial_state(no_retry);
+  const engine::RunResult failed = engine::simulate_with_retry(no_retry, s0, ro, 0.8, 0);
+  REQUIRE(failed.status == engine::StepStatus::kUnstableStep);
+  CHECK(failed.step_retries == 0);
+  CHECK(no_retry.dt == too_long.dt);
+  CHECK(s0.time == failed.failed_at);  // the state is that of the returned (failed) run
+
+  engine::Model retried = too_long;
+  engine::State s1 = engine::make_initial_state(retried);
+  int attempts = 0;
+  const engine::RunResult ok =
+      engine::simulate_with_retry(retried, s1, ro, 0.8, 4, [&attempts] { ++attempts; });
+  REQUIRE(ok.status == engine::StepStatus::kOk);
+  CHECK(ok.step_retries >= 1);
+  CHECK(attempts == ok.step_retries + 1);
+  CHECK(retried.dt < too_long.dt);
+  const double per_period = retried.period / retried.dt;
+  CHECK(std::abs(per_period - std::round(per_period)) < 1e-9);
+  CHECK(ok.max_stability_ratio < 1.0);
+
+  engine::State s2 = engine::make_initial_state(retried);
+  engine::Data d2 = engine::make_data(retried);
+  const engine::RunResult plain = engine::simulate(retried, s2, d2, ro);
+  REQUIRE(plain.status == engine::StepStatus::kOk);
+  REQUIRE(plain.frames.size() == ok.frames.size());
+  for (size_t i = 0; i < plain.frames.size(); ++i) {
+    CHECK(plain.frames[i].joint.ap == ok.frames[i].joint.ap);
+    CHECK(plain.frames[i].joint.ie == ok.frames[i].joint.ie);
+  }
+  CHECK(s1.time == s2.time);
+  CHECK(s1.step == s2.step);
 }

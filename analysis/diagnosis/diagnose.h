@@ -18,7 +18,8 @@
 //
 // Selection rule: a candidate is supported when its AICc is below the "none" candidate's by
 // more than ic_threshold AND its held-out RMSE is below (1 - heldout_threshold) times the
-// "none" candidate's AND none of its parameters ended at a search bound; among supported
+// "none" candidate's AND below (1 - heldout_threshold) times the trivial predictor's AND none
+// of its parameters ended at a search bound; among supported
 // candidates the lowest held-out RMSE wins. Both gates are needed: AICc alone rewards
 // in-sample fits of specimen scatter, held-out error alone is noisy with few folds. The bound
 // rule: a fit that ends at a search bound wants a value outside the searched (physically
@@ -28,8 +29,9 @@
 // the bound and never named.
 //
 // Trivial predictor: the measured mean of each quantity (held out: the mean over the fold's
-// training rows). Every report gives the gain against it too, so a gain that a flat line
-// achieves is visible as such.
+// training rows), or a case's own where its inputs carry most of the answer (forces). Every
+// report gives the gain against it, and a candidate must beat it by the same held-out margin
+// as it beats "none": a gain that a flat line achieves is not a finding.
 #pragma once
 
 #include <Eigen/Core>
@@ -47,6 +49,7 @@ struct DiagnosisOptions {
   double ic_threshold = 12.0;       // required AICc drop against "none" [-]
   double heldout_threshold = 0.05;  // required relative held-out RMSE drop against "none" [-]
   bool multi_start = true;          // multi-start the full-data fits
+  bool trivial_gate = true;         // also require the held-out drop against the trivial predictor
 };
 
 struct ModelFit {
@@ -63,7 +66,8 @@ struct ModelFit {
   double aicc = 0.0;                   // corrected Akaike information criterion [-]
   std::vector<double> noise_sd;        // profiled noise sd per quantity [quantity unit]
   std::vector<int> at_bound;           // indices into specs of parameters at a search bound
-  bool passes_gates = false;           // AICc and held-out gates passed (bound rule aside)
+  bool passes_gates = false;           // AICc and held-out gates against none passed
+  bool beats_trivial = true;           // held-out gate against the trivial predictor passed
 };
 
 struct DiagnosisResult {
@@ -72,7 +76,7 @@ struct DiagnosisResult {
   NoiseModel noise_model = NoiseModel::per_quantity;  // the residual model used
   Eigen::VectorXd weights;          // unit conversion into rmse_unit per measurement [-]
   ModelFit baseline;                // practitioner's calibration, not refitted
-  ModelFit trivial;                 // the measured mean of each quantity (no model at all)
+  ModelFit trivial;                 // the measured mean of each quantity, or the case's own
   std::vector<ModelFit> candidates; // "none" first, then the case's candidates
   int selected = 0;                 // index into candidates
   double gain = 0.0;                // 1 - heldout extended / heldout baseline [-]

@@ -94,6 +94,13 @@ struct DiagnosisCase {
   std::function<Eigen::VectorXd(const std::vector<int>& train)> calibrate_baseline;
   // case-specific remarks appended to an effect's model line (fixed parameters, references)
   std::map<Effect, std::string> model_notes;
+  // the trivial predictor (optional; default: each quantity's measured mean over the training
+  // rows): a case whose inputs already carry most of the answer names a stronger one (forces:
+  // the training rows' mean medial share times each row's measured total). Predictions for
+  // `rows` from the `train` rows [quantity units].
+  std::string trivial_model;
+  std::function<Eigen::VectorXd(const std::vector<int>& train, const std::vector<int>& rows)>
+      trivial_predict;
   // dense model curves for plots (optional)
   std::function<std::vector<CurvePoint>(Effect effect, const Eigen::VectorXd& baseline,
                                         const Eigen::VectorXd& effect_params)>

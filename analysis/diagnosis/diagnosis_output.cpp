@@ -22,7 +22,7 @@ std::string write_diagnosis(const DiagnosisCase& c, const DiagnosisResult& r,
   char line[512];
   std::snprintf(line, sizeof line,
                 "diagnosis %s: effect %s, held-out RMSE %.4g -> %.4g (%s), gain %.3f "
-                "(against the measured mean %.4g: %.3f), %.2f s -> %s\n",
+                "(against the trivial predictor %.4g: %.3f), %.2f s -> %s\n",
                 c.name.c_str(), effect.c_str(), r.baseline.heldout_rmse,
                 r.extended().heldout_rmse, r.rmse_unit.c_str(), r.gain,
                 r.trivial.heldout_rmse, r.gain_vs_trivial, r.seconds, out.string().c_str());

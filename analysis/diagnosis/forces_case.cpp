@@ -254,6 +254,22 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
     return v;
   };
   c.calibrate_baseline = [](const std::vector<int>&) { return Eigen::VectorXd(); };
+  // the trivial predictor: the total force is the rig's input, so the flat line to beat is the
+  // training rows' mean medial share (load-weighted) times each row's measured total
+  c.trivial_model = "mean measured medial share of the training rows (load-weighted) x the "
+                    "row's measured total force";
+  c.trivial_predict = [rows = c.measured.rows, total = m.total_N](const std::vector<int>& train,
+                                                                  const std::vector<int>& idx) {
+    double medial = 0.0, sum = 0.0;
+    for (int i : train) {
+      medial += rows[static_cast<size_t>(i)].value;
+      sum += total[static_cast<size_t>(i)];
+    }
+    const double share = sum > 0.0 ? medial / sum : 0.5;
+    Eigen::VectorXd p(static_cast<Eigen::Index>(idx.size()));
+    for (size_t k = 0; k < idx.size(); ++k) p[static_cast<Eigen::Index>(k)] = share * total[static_cast<size_t>(idx[k])];
+    return p;
+  };
 
   if (m.two_cycles) {
     c.split_rule = "cycle against cycle (fit on cycle 1, predict cycle 2; fit on cycle 2, "
@@ -288,25 +304,6 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
     return out;
   };
   return c;
-}
-
-double trivial_heldout_rmse(const DiagnosisCase& c, const std::vector<double>& total_N) {
-  double ss = 0.0;
-  int n = 0;
-  for (const Fold& f : c.folds) {
-    double med = 0.0, tot = 0.0;
-    for (int i : f.train) {
-      med += c.measured.rows[static_cast<size_t>(i)].value;
-      tot += total_N[static_cast<size_t>(i)];
-    }
-    const double share = tot > 0.0 ? med / tot : 0.5;
-    for (int i : f.test) {
-      const double d = c.measured.rows[static_cast<size_t>(i)].value - share * total_N[static_cast<size_t>(i)];
-      ss += d * d;
-      ++n;
-    }
-  }
-  return n > 0 ? std::sqrt(ss / n) : 0.0;
 }
 
 }  // namespace kneesim::diagnosis

@@ -53,8 +53,4 @@ DiagnosisCase make_forces_case(const ForcesMeasured& measured,
                                std::shared_ptr<ForcesSimulator> sim,
                                const ForcesCaseOptions& options = {});
 
-// the trivial predictor: the mean measured medial share of the training rows times each row's
-// measured total; its held-out RMSE under the case's folds [N]
-double trivial_heldout_rmse(const DiagnosisCase& c, const std::vector<double>& total_N);
-
 }  // namespace kneesim::diagnosis

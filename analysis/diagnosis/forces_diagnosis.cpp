@@ -51,13 +51,6 @@ ForcesDiagnosisReport diagnose_forces(const DiagnosisCase& c, ForcesSimulator& s
     for (int i : m.at_bound) names.push_back(m.specs[static_cast<size_t>(i)].name);
     x["at_bound"][std::string(effect_name(m.effect))] = names;
   }
-  // the trivial predictor: the training cycle's mean measured share x the measured total
-  const double trivial = trivial_heldout_rmse(c, total_N);
-  x["trivial_predictor"] = "mean measured medial share of the training rows (load-weighted) x "
-                           "the row's measured total force";
-  x["trivial_heldout_rmse"] = trivial;
-  x["gain_vs_trivial"] = trivial > 0.0 ? 1.0 - r.extended().heldout_rmse / trivial : 0.0;
-  x["baseline_gain_vs_trivial"] = trivial > 0.0 ? 1.0 - r.baseline.heldout_rmse / trivial : 0.0;
   // the grid surrogate against a direct simulation at the fitted value
   const ModelFit& e = r.extended();
   if (e.effect != Effect::none && e.params.size() > 0) {
@@ -127,11 +120,10 @@ ForcesDiagnosisReport run_forces_diagnosis(const ForcesDiagnosisOptions& o) {
   {
     nlohmann::json j = diagnosis_json(c, r);
     for (auto it = rep.extra.begin(); it != rep.extra.end(); ++it) j["forces"][it.key()] = it.value();
-    j["gain_vs_trivial"] = rep.extra["gain_vs_trivial"];
     io::write_json(std::filesystem::path(o.out) / "diagnosis.json", j);
   }
   const nlohmann::json& x = rep.extra;
-  std::string md = "## Forces: medial share, trivial predictor, surrogate check\n\n";
+  std::string md = "## Forces: medial share, surrogate check\n\n";
   md += "Medial share of the axial force in stance (rows above 20 % of the cycle's peak "
         "total):\n\n| cycle | measured | baseline | extended |\n|---|---|---|---|\n";
   for (auto it = x["medial_share"].begin(); it != x["medial_share"].end(); ++it) {
@@ -139,10 +131,6 @@ ForcesDiagnosisReport run_forces_diagnosis(const ForcesDiagnosisOptions& o) {
           fmt("%.3f", it.value()["baseline"].get<double>()) + " | " +
           fmt("%.3f", it.value()["extended"].get<double>()) + " |\n";
   }
-  md += "\nTrivial predictor (" + x["trivial_predictor"].get<std::string>() + "): held-out RMSE " +
-        fmt("%.1f", x["trivial_heldout_rmse"].get<double>()) + " N; gain of the extension against "
-        "it " + fmt("%.3f", x["gain_vs_trivial"].get<double>()) + " (baseline against it " +
-        fmt("%.3f", x["baseline_gain_vs_trivial"].get<double>()) + ").\n";
   if (!x["at_bound"].empty()) {
     md += "\nFits at a search bound (flagged, never named): " + x["at_bound"].dump() + ".\n";
   }

@@ -41,6 +41,9 @@ std::string verdict(const ModelFit& m, bool selected) {
     return std::string(m.passes_gates ? "passed the gates but " : "") + "at a search bound: " +
            at_bound_text(m) + "; not named";
   }
+  if (m.passes_gates && !m.beats_trivial) {
+    return "passed the gates against none but not against the trivial predictor: not named";
+  }
   return m.passes_gates ? "supported, higher held-out RMSE than the named one" : "not supported";
 }
 
@@ -96,6 +99,7 @@ nlohmann::json diagnosis_json(const DiagnosisCase& c, const DiagnosisResult& r) 
                                {"aicc", m.aicc},
                                {"delta_aicc", m.aicc - aicc_none},
                                {"passes_gates", m.passes_gates},
+                               {"beats_trivial", m.beats_trivial},
                                {"params_at_search_bound", bound},
                                {"verdict", verdict(m, static_cast<int>(i) == r.selected)}});
   }
@@ -185,8 +189,8 @@ std::string diagnosis_markdown(const DiagnosisCase& c, const DiagnosisResult& r)
   md += "\nIn-sample RMSE " + num(e.rmse) + ", held-out RMSE " + num(e.heldout_rmse) +
         " (" + r.rmse_unit + ").\n\n**Gain** = 1 - heldout_rmse_extended / "
         "heldout_rmse_baseline = " + num(r.gain, "%.3f") + ".\n\n"
-        "**Against the trivial predictor** (" + r.trivial.model + ", held out: the training "
-        "rows' mean): held-out RMSE " + num(r.trivial.heldout_rmse) + "; gain of the extended "
+        "**Against the trivial predictor** (" + r.trivial.model + ", held out: from the "
+        "training rows; a candidate must beat it by the held-out margin to be named): held-out RMSE " + num(r.trivial.heldout_rmse) + "; gain of the extended "
         "model 1 - " + num(e.heldout_rmse) + " / " + num(r.trivial.heldout_rmse) + " = " +
         num(r.gain_vs_trivial, "%.3f") + ", of the baseline " + num(base_vs_trivial, "%.3f") +
         (r.gain_vs_trivial <= 0.0 ? " (the extended model predicts no better than the "

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <optional>
 
 #include "engine/io/json_out.h"
 #include "engine/io/plot.h"
@@ -47,6 +46,17 @@ io::Table make_measured_table(const loads::MeasuredKinematics& k) {
 
 }  // namespace
 
+io::Table read_measured_kinematics(const models::Config& config) {
+  if (config.measured_kinematics.empty()) return {};
+  // the measured pose is reported about the same femoral reference point as the simulation
+  const Eigen::Vector3d p_FR_F = Eigen::Vector3d(config.femur_origin_mm[0],
+                                                 config.femur_origin_mm[1],
+                                                 config.femur_origin_mm[2]) * 1e-3;
+  return make_measured_table(loads::read_kinematics(
+      models::resolve_path(config, config.measured_kinematics),
+      config.implant_kind == "mesh" ? p_FR_F : Eigen::Vector3d::Zero()));
+}
+
 models::Config load_run_config(const std::string& path, const std::vector<std::string>& sets) {
   std::vector<models::Override> overrides;
   for (const auto& s : sets) overrides.push_back(models::parse_override(s));
@@ -63,16 +73,7 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   const models::Config& config = job.config;
   const fs::path& out = job.out;
   // the measured curve is read before the simulation: a bad file costs no run
-  std::optional<loads::MeasuredKinematics> measured;
-  if (!config.measured_kinematics.empty()) {
-    // the measured pose is reported about the same femoral reference point as the simulation
-    const Eigen::Vector3d p_FR_F = Eigen::Vector3d(config.femur_origin_mm[0],
-                                                   config.femur_origin_mm[1],
-                                                   config.femur_origin_mm[2]) * 1e-3;
-    measured = loads::read_kinematics(
-        models::resolve_path(config, config.measured_kinematics),
-        config.implant_kind == "mesh" ? p_FR_F : Eigen::Vector3d::Zero());
-  }
+  const io::Table measured = read_measured_kinematics(config);
   models::BuiltModel built = models::build_model(config);
   if (job.on_built) job.on_built(built);
   clear_outputs(out);
@@ -126,8 +127,8 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   io::write_csv(out / "kinematics.csv", table);
   std::vector<std::string> plot_args = {(out / "kinematics.csv").string(),
                                         (out / "kinematics.png").string()};
-  if (measured) {
-    io::write_csv(out / "measured_kinematics.csv", make_measured_table(*measured));
+  if (!measured.columns.empty()) {
+    io::write_csv(out / "measured_kinematics.csv", measured);
     plot_args.push_back("--measured");
     plot_args.push_back((out / "measured_kinematics.csv").string());
   }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/run/run_outputs.h"
+#include "engine/io/table.h"
 #include "engine/simulate.h"
 #include "models/build_model.h"
 #include "models/config.h"
@@ -33,6 +34,11 @@ struct GaitRunReport {
   CycleFigures figures;     // of the last cycle
   double seconds = 0.0;     // simulation wall time [s]
 };
+
+// the config's output.measured_kinematics as a table (gait_pct, [flexion_deg,] ap_mm, ie_deg),
+// reported about the simulation's femoral reference point; no columns when the config names
+// no file. InputError names a bad file.
+io::Table read_measured_kinematics(const models::Config& config);
 
 // the gait cycles of a run from the Model's initial state, with engine::simulate_with_retry's
 // step retry at the stability limit (built.model.dt keeps the step that worked; the result

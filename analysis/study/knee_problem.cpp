@@ -25,7 +25,8 @@ std::string value_text(double v) {
 }  // namespace
 
 StudyProblem make_knee_problem(const KneeStudySetup& s) {
-  const models::Config base = run::load_run_config(s.config, s.sets);
+  models::Config base = run::load_run_config(s.config, s.sets);
+  if (!s.measured.empty()) base.measured_kinematics = std::filesystem::absolute(s.measured).string();
   StudyProblem p;
   if (s.vars.empty()) {
     p.variables = pal2008_variables(base, s.allow_truncation);
@@ -48,7 +49,7 @@ StudyProblem make_knee_problem(const KneeStudySetup& s) {
     p.measures.push_back("gravimetric_wear_mg");
   }
   CurveSpec ap{"ap_mm", "gait_pct", {}, "envelopes.csv"};
-  for (int k = 0; k <= 100; ++k) ap.x.push_back(k);
+  for (int k = 0; k < 100; ++k) ap.x.push_back(k);  // the frames: 0 to 99 % of the cycle
   CurveSpec ie = ap;
   ie.name = "ie_deg";
   p.curves = {ap, ie};
@@ -62,6 +63,9 @@ StudyProblem make_knee_problem(const KneeStudySetup& s) {
     p.curves.push_back(lin);
     p.curves.push_back(grav);
   }
+
+  // a measured trace for the envelope plot, read (and checked) before any trial
+  p.measured = run::read_measured_kinematics(base);
 
   // the nominal model: built once, shared (const) by every trial for its geometry
   auto nominal = std::make_shared<const models::BuiltModel>(models::build_model(base));

@@ -24,6 +24,7 @@ struct KneeStudySetup {
   std::string config;              // TOML path ("" = built-in defaults)
   std::vector<std::string> sets;   // key=value overrides applied to every trial
   std::vector<std::string> vars;   // key=distribution; empty = Pal 2008's 13
+  std::string measured;            // measured kinematics to overlay ("" = the config's own)
   bool allow_truncation = false;
   bool wear = false;
   long wear_cycles = 5'000'000;

@@ -20,6 +20,7 @@
 #include "analysis/study/sampling.h"
 #include "analysis/study/trial_record.h"
 #include "analysis/study/variables.h"
+#include "engine/io/table.h"
 
 namespace kneesim::study {
 
@@ -44,6 +45,9 @@ struct StudyProblem {
   std::vector<StudyVariable> variables;
   std::vector<std::string> measures;  // scalar measure names with units
   std::vector<CurveSpec> curves;
+  // measured curves shown with the envelopes (DIR/measured_kinematics.csv: the first curve's
+  // x name and any curve names); no columns when there are none
+  io::Table measured;
   // thread-safe; x: one value per variable [key's unit]
   std::function<TrialOutcome(const std::vector<double>& x)> evaluate;
 };

@@ -86,7 +86,7 @@ void clear_study_outputs(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
   for (const char* f : {"trials.csv", "envelopes.csv", "wear_envelopes.csv", "sensitivity.csv",
                         "summary.json", "envelopes.png", "sensitivity.png",
-                        "wear_envelopes.png"}) {
+                        "wear_envelopes.png", "measured_kinematics.csv"}) {
     fs::remove(dir / f);
   }
 }
@@ -177,6 +177,7 @@ void write_study_outputs(const StudyProblem& p, const StudyOptions& o, const Stu
   io::write_file_atomic(o.out / "sensitivity.csv", sens);
 
   // plots (a missing matplotlib is a warning; the CSV files are complete without them)
+  if (!p.measured.columns.empty()) io::write_csv(o.out / "measured_kinematics.csv", p.measured);
   std::vector<std::string> args = {(o.out).string()};
   if (!amv) io::run_plot("study.py", args);
   io::write_json(o.out / "summary.json", j);

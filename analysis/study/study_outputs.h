@@ -8,6 +8,8 @@
 //                     equals |r| for a linear model of normal inputs)
 //   summary.json      per measure mean, sd, p01, p50, p99 (AMV: mean-value and corrected
 //                     percentiles per level, with run counts), trials done and failed, seconds
+//   measured_kinematics.csv  the measured trace the problem carries (knee: the config's
+//                     output.measured_kinematics), drawn over the envelopes
 //   plots             envelopes.png, sensitivity.png, wear_envelopes.png (tools/plots/study.py)
 // summary.json is written last: its presence marks a complete study.
 #pragma once

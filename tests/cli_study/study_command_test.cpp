@@ -118,3 +118,83 @@ TEST_CASE("kneesim study: bad input is refused with exit 2 before any trial runs
   const auto s = nlohmann::json::parse(slurp(out / "summary.json"));
   CHECK(s["variables"]["rig.restraint.k_anterior_N_per_mm"]["truncated_mass"].get<double>() > 0.1);
 }
+
+TEST_CASE("kneesim study --wear end to end, with a measured trace over the envelopes") {
+  // 3 LHS trials of 1 Mc in 2 updates on the coarse model. References: each trial's wear
+  // equals `kneesim wear` of the same inputs (the trial is that run; inputs as trials.csv
+  // prints them, 10 digits, so 1e-6 relative); wear is cumulative, so every trial's wear and
+  // hence each percentile is non-decreasing over the updates, and zero at cycle 0; the
+  // measured file comes back as measured_kinematics.csv for the plot.
+  TempDir tmp;
+  const fs::path measured = tmp.path / "m.csv";
+  std::ofstream(measured) << "gait_pct,ap_mm,ie_deg\n0,1,2\n50,-1,4\n100,1,2\n";
+  const fs::path out = tmp.path / "wear";
+  const Result r = run_kneesim(
+      {"study", "--method", "lhs", "--trials", "3", "--seed", "5", "--set",
+       "implant.edge_length_mm=2", "--threads", "2", "--quiet", "--out", out.string(), "--wear",
+       "--wear-cycles", "1000000", "--wear-updates", "2", "--measured", measured.string()},
+      tmp.path, "wear");
+  REQUIRE_MESSAGE(r.exit_code == 0, r.err);
+  const std::vector<std::string> rows = split(slurp(out / "trials.csv"), '\n');
+  REQUIRE(rows.size() >= 2);
+  const std::vector<std::string> head = split(rows[0], ',');
+  auto col = [&head](const std::string& name) {
+    for (size_t i = 0; i < head.size(); ++i)
+      if (head[i] == name) return i;
+    FAIL("no column " << name);
+    return size_t{0};
+  };
+  const size_t lin = col("max_linear_wear_mm"), grav = col("gravimetric_wear_mg");
+  const size_t first_input = 2, last_input = col("ap_rom_mm");  // inputs sit between
+  int ok_trials = 0;
+  for (size_t i = 1; i < rows.size() && ok_trials < 1; ++i) {
+    const std::vector<std::string> cells = split(rows[i], ',');
+    if (cells.back().rfind("ok", 0) != 0) continue;
+    ++ok_trials;
+    const double lin_mm = std::stod(cells[lin]), grav_mg = std::stod(cells[grav]);
+    CHECK(lin_mm > 0.0);
+    CHECK(grav_mg > 0.0);
+    // the same trial as a wear run
+    std::vector<std::string> args = wear_args(tmp.path / "single", {}, "500000", "1000000");
+    for (size_t k = first_input; k < last_input; ++k) {
+      args.push_back("--set");
+      args.push_back(head[k] + "=" + cells[k]);
+    }
+    args.push_back("--allow-any-wear-factor");
+    const Result w = run_kneesim(args, tmp.path, "single");
+    REQUIRE_MESSAGE(w.exit_code == 0, w.err);
+    const auto ws = nlohmann::json::parse(slurp(tmp.path / "single" / "summary.json"));
+    CHECK(ws["max_depth_mm"].get<double>() == doctest::Approx(lin_mm).epsilon(1e-6));
+    CHECK(ws["mass_mg"].get<double>() == doctest::Approx(grav_mg).epsilon(1e-6));
+  }
+  CHECK(ok_trials == 1);
+
+  // wear envelopes: cycle 0, 500000, 1000000; percentiles ordered and non-decreasing
+  const std::vector<std::string> env = split(slurp(out / "wear_envelopes.csv"), '\n');
+  REQUIRE(env.size() == 4);
+  std::vector<double> prev(9, 0.0);
+  for (size_t i = 1; i < env.size(); ++i) {
+    const std::vector<std::string> c = split(env[i], ',');
+    REQUIRE(c.size() == 9);  // cycles + 4 per measure
+    for (size_t k = 1; k < c.size(); ++k) {
+      const double v = std::stod(c[k]);
+      if (i == 1) CHECK(v == 0.0);
+      CHECK(v >= prev[k]);
+      prev[k] = v;
+    }
+    for (size_t m : {1u, 5u}) {
+      CHECK(std::stod(c[m]) <= std::stod(c[m + 1]));
+      CHECK(std::stod(c[m + 1]) <= std::stod(c[m + 2]));
+    }
+  }
+  // the kinematic envelopes: one row per frame (0 to 99 % of the cycle), every cell a number
+  const std::string kin = slurp(out / "envelopes.csv");
+  CHECK(count_lines(kin) == 101);
+  CHECK(kin.find("nan") == std::string::npos);
+  CHECK(kin.find(",,") == std::string::npos);
+  CHECK(kin.find(",\n") == std::string::npos);
+  const auto s = nlohmann::json::parse(slurp(out / "summary.json"));
+  CHECK(s["measures"]["gravimetric_wear_mg"]["n"].get<long>() == s["trials_done"].get<long>());
+  CHECK(split(slurp(out / "measured_kinematics.csv"), '\n').front() == "gait_pct,ap_mm,ie_deg");
+  CHECK(count_lines(slurp(out / "measured_kinematics.csv")) == 4);
+}

@@ -64,9 +64,11 @@ void run(const StudyArgs& a) {
   const study::StudyProblem problem = study::make_knee_problem(a.setup);
   if (!o.quiet) {
     for (const auto& v : problem.variables) {
-      if (v.removed_mass > 0.0) {
-        std::fprintf(stderr, "%s: %s truncated to its allowed range (mass removed %.3g)\n",
-                     v.key.c_str(), study::describe(v.distribution).c_str(), v.removed_mass);
+      // below 1e-6 (e.g. a normal's tail beyond 15 SD) the truncation is a technicality
+      // (summary.json keeps every variable's truncated_mass)
+      if (v.removed_mass > 1e-6) {
+        std::fprintf(stderr, "%s: %s (probability mass removed %.3g)\n", v.key.c_str(),
+                     study::describe(v.distribution).c_str(), v.removed_mass);
       }
     }
     std::fprintf(stderr, "kneesim study: %zu variables, method %s, %d rank(s)\n",
@@ -110,6 +112,9 @@ void add_study_command(CLI::App& app) {
                 "sample a distribution that reaches outside its key's allowed range truncated "
                 "to that range (reported) instead of refusing it");
   cmd->add_option("--set", args->setup.sets, "override a config key for every trial (repeatable)");
+  cmd->add_option("--measured", args->setup.measured,
+                  "measured kinematics (CSV gait_pct,ap_mm,ie_deg or .sto) drawn over the AP and "
+                  "IE envelopes (default: the config's output.measured_kinematics)");
   cmd->add_flag("--wear", args->setup.wear, "also run the wear simulation per trial");
   cmd->add_option("--wear-cycles", args->setup.wear_cycles, "wear cycles per trial")
       ->capture_default_str();

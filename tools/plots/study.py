@@ -1,9 +1,11 @@
 """Plots of a probabilistic study (`kneesim study`): AP and IE 1/50/99 % envelopes over the
-gait cycle with the nominal trace, |Pearson r| sensitivity bars per measure, and with --wear
-the wear envelopes against cycles.
+gait cycle with the nominal trace (and the measured one when DIR/measured_kinematics.csv is
+there), |Pearson r| sensitivity bars per measure, and with --wear the wear envelopes against
+cycles.
 
-usage: study.py DIR   (reads DIR/envelopes.csv, DIR/sensitivity.csv, DIR/wear_envelopes.csv;
-writes DIR/envelopes.png, DIR/sensitivity.png, DIR/wear_envelopes.png)
+usage: study.py DIR   (reads DIR/envelopes.csv, DIR/sensitivity.csv, DIR/wear_envelopes.csv,
+DIR/measured_kinematics.csv; writes DIR/envelopes.png, DIR/sensitivity.png,
+DIR/wear_envelopes.png)
 """
 import csv
 import os
@@ -12,7 +14,7 @@ import sys
 from plotio import save_figure
 
 
-def envelope_axes(ax, cols, x_name, name, ylabel):
+def envelope_axes(ax, cols, x_name, name, ylabel, measured=None):
     x = cols[x_name]
     ax.fill_between(x, cols[name + "_p01"], cols[name + "_p99"], alpha=0.3,
                     label="1-99 %")
@@ -20,6 +22,8 @@ def envelope_axes(ax, cols, x_name, name, ylabel):
     nominal = cols.get(name + "_nominal")
     if nominal:
         ax.plot(x, nominal, "k--", label="nominal")
+    if measured and name in measured:
+        ax.plot(measured["gait_pct"], measured[name], "r-", lw=1.2, label="measured")
     ax.set_ylabel(ylabel)
     ax.legend(fontsize=8)
 
@@ -33,9 +37,11 @@ def main():
     env = os.path.join(d, "envelopes.csv")
     if os.path.exists(env) and "ap_mm_p01" in read_columns_blank(env):
         cols = read_columns_blank(env)
+        meas_path = os.path.join(d, "measured_kinematics.csv")
+        measured = read_columns_blank(meas_path) if os.path.exists(meas_path) else None
         fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
-        envelope_axes(ax1, cols, "gait_pct", "ap_mm", "AP, tibia anterior (mm)")
-        envelope_axes(ax2, cols, "gait_pct", "ie_deg", "IE, tibia internal (deg)")
+        envelope_axes(ax1, cols, "gait_pct", "ap_mm", "AP, tibia anterior (mm)", measured)
+        envelope_axes(ax2, cols, "gait_pct", "ie_deg", "IE, tibia internal (deg)", measured)
         ax2.set_xlabel("gait cycle (%)")
         fig.tight_layout()
         save_figure(fig, os.path.join(d, "envelopes.png"))

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "engine/io/json_out.h"
+#include "engine/io/output_folder.h"
 #include "engine/io/plot.h"
 #include "engine/io/progress.h"
 #include "engine/simulate.h"
@@ -74,10 +75,11 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   const fs::path& out = job.out;
   // the measured curve is read before the simulation: a bad file costs no run
   const io::Table measured = read_measured_kinematics(config);
+  // a folder that cannot take the results is found before the model is built
+  io::check_output_folder(out);
   models::BuiltModel built = models::build_model(config);
   if (job.on_built) job.on_built(built);
   clear_outputs(out);
-  fs::create_directories(out);
 
   engine::RunOptions options;
   options.cycles = config.cycles;

@@ -13,6 +13,7 @@
 #include "analysis/run/run_outputs.h"
 #include "engine/errors.h"
 #include "engine/io/json_out.h"
+#include "engine/io/output_folder.h"
 #include "engine/io/plot.h"
 #include "engine/io/progress.h"
 #include "engine/io/table.h"
@@ -72,20 +73,24 @@ double wear_rate(const std::vector<wear::UpdateRecord>& records) {
   return n < 3 ? sxy / sxx : (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-void clear_outputs(const std::filesystem::path& dir) {
+}  // namespace
+
+bool clear_wear_outputs(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
-  if (!fs::exists(dir)) return;
+  bool any = false;
+  if (!fs::is_directory(dir)) return any;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
     if (name == "wear.csv" || name == "summary.json" || name == "wear.png" ||
         name == "depth_map.png" || name == "final_depth.csv" || name == "wear.checkpoint" ||
-        name == "summary.failed.json" || name.rfind("wear_depth_", 0) == 0) {
+        name == "summary.failed.json" || name == "wear.partial.csv" ||
+        name == "kinematics.csv" || name.rfind("wear_depth_", 0) == 0) {
       fs::remove(e.path());
+      any = true;
     }
   }
+  return any;
 }
-
-}  // namespace
 
 // the job's wear law with its parameters; throws InputError naming the option
 static wear::WearLawParams make_wear_law(const WearJob& j) {
@@ -211,8 +216,8 @@ nlohmann::json run_wear_job(const WearJob& j) {
                                j.out.string().c_str());
     resume = false;
   }
-  if (!resume) clear_outputs(j.out);
-  fs::create_directories(j.out);
+  io::check_output_folder(j.out);  // before the model is built and the loop starts
+  if (!resume) clear_wear_outputs(j.out);
   const models::BuiltModel built = models::build_model(j.config);
   const models::MaterialConfig& mat = built.material;
   const double density_mg_per_mm3 = mat.density_g_per_cm3;  // g/cm^3 == mg/mm^3
@@ -252,9 +257,13 @@ nlohmann::json run_wear_job(const WearJob& j) {
     summary["status"] = "failed";
     summary["failure"] = result.message;
     io::write_json(j.out / "summary.failed.json", summary);
-    throw std::runtime_error("the wear simulation stopped: " + result.message +
-                             "; the updates completed so far are in " +
-                             (j.out / "wear.csv").string());
+    // what was complete stays under a name that cannot pass for a finished run's table
+    std::string kept = "no geometry update was completed";
+    if (fs::exists(j.out / "wear.csv")) {
+      fs::rename(j.out / "wear.csv", j.out / "wear.partial.csv");
+      kept = "the updates completed so far are in " + (j.out / "wear.partial.csv").string();
+    }
+    throw std::runtime_error("the wear simulation stopped: " + result.message + "; " + kept);
   }
   const wear::UpdateRecord& last = result.records.back();
   const wear::UpdateRecord& first = result.records.front();
@@ -288,6 +297,9 @@ nlohmann::json run_wear_job(const WearJob& j) {
     io::run_plot("wear.py", {(j.out / "wear.csv").string(), (j.out / "final_depth.csv").string(),
                              (j.out / "wear.png").string(), (j.out / "depth_map.png").string()});
   }
+  // a resumed run may follow a failed one: no failure record stays beside the summary
+  fs::remove(j.out / "summary.failed.json");
+  fs::remove(j.out / "wear.partial.csv");
   io::write_json(j.out / "summary.json", summary);
   fs::remove(o.checkpoint);  // complete: nothing to resume
   return summary;

@@ -41,6 +41,10 @@ nlohmann::json run_wear_job(const WearJob& job);
 // no outputs, checkpoint or progress; the studies run wear trials through it
 wear::WearOptions make_wear_options(const WearJob& job, const models::BuiltModel& built);
 
+// removes the files a wear job writes (a previous run's results and failure records) from
+// `dir`; true when there were any
+bool clear_wear_outputs(const std::filesystem::path& dir);
+
 // checks cycles, interval, schedule and wear factor; throws InputError with one sentence
 void check_wear_job(const WearJob& job);
 

@@ -13,6 +13,7 @@
 #include "engine/io/json_out.h"
 #include "engine/io/plot.h"
 #include "engine/io/table.h"
+#include "engine/io/output_folder.h"
 #include "tools/kneesim/bor_options.h"
 #include "tools/kneesim/commands.h"
 #include "wear/bor/bor_simulation.h"
@@ -131,7 +132,10 @@ void add_bor_command(CLI::App& app) {
                   "incubation_cycles)");
   cmd->add_option("--out", opt->out, "output folder")->capture_default_str();
   add_bor_rig_options(cmd, opt->rig);
-  cmd->callback([opt] { run_bor(*opt); });
+  cmd->callback([opt] {
+    io::check_output_folder(opt->out);  // before any work
+    run_bor(*opt);
+  });
 }
 
 }  // namespace kneesim::cli

@@ -1,5 +1,6 @@
 // `kneesim compare`: the same wear simulation for several insert materials, run concurrently
 // (one material per core), with a comparison table, a markdown report and plots.
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 #include <mutex>
@@ -11,6 +12,7 @@
 #include "engine/io/plot.h"
 #include "engine/io/table.h"
 #include "models/config.h"
+#include "engine/io/output_folder.h"
 #include "tools/kneesim/commands.h"
 
 namespace kneesim::cli {
@@ -49,8 +51,23 @@ void run(const CompareArgs& a) {
     run::check_wear_job(job);
     jobs.push_back(std::move(job));
   }
-  fs::create_directories(a.out);
-  for (const char* f : {"comparison.csv", "comparison.md", "comparison.json"}) fs::remove(fs::path(a.out) / f);
+  // the folder holds this comparison only: a previous one's table, plots and the result
+  // folders of materials not run now go (a folder with anything but wear outputs stays)
+  for (const char* f : {"comparison.csv", "comparison.md", "comparison.json", "compare_wear.png",
+                        "compare_kinematics.png", "compare_contact.png"}) {
+    fs::remove(fs::path(a.out) / f);
+  }
+  std::vector<fs::path> others;
+  for (const auto& e : fs::directory_iterator(a.out)) {
+    const std::string name = e.path().filename().string();
+    if (e.is_directory() &&
+        std::find(a.materials.begin(), a.materials.end(), name) == a.materials.end()) {
+      others.push_back(e.path());
+    }
+  }
+  for (const fs::path& d : others) {
+    if (run::clear_wear_outputs(d) && fs::is_empty(d)) fs::remove(d);
+  }
   std::mutex print;
   const std::vector<nlohmann::json> results =
       run::run_wear_jobs(jobs, a.jobs, [&](size_t i, const nlohmann::json& r) {
@@ -122,7 +139,10 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--jobs", args->jobs, "materials simulated at once (default: all cores)")
       ->check(finite_range(1, 1024));
   cmd->add_flag("--quiet", args->quiet, "no per-material lines or table");
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args] {
+    io::check_output_folder(args->out);  // before any work
+    run(*args);
+  });
 }
 
 }  // namespace kneesim::cli

@@ -10,6 +10,7 @@
 #include "analysis/diagnosis/bor_case.h"
 #include "analysis/diagnosis/diagnosis_output.h"
 #include "engine/errors.h"
+#include "engine/io/output_folder.h"
 #include "tools/kneesim/bor_options.h"
 #include "tools/kneesim/commands.h"
 #include "tools/kneesim/diagnose_forces.h"
@@ -62,7 +63,10 @@ void add_diagnose_bor(CLI::App* diagnose) {
       ->capture_default_str();
   add_diagnose_common_options(cmd, opt->common);
   add_bor_rig_options(cmd, opt->rig);
-  cmd->callback([opt] { run_diagnose_bor(*opt); });
+  cmd->callback([opt] {
+    io::check_output_folder(opt->common.out);  // before any work
+    run_diagnose_bor(*opt);
+  });
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "engine/simulate.h"
 #include "models/build_model.h"
 #include "models/config.h"
+#include "engine/io/output_folder.h"
 #include "tools/kneesim/commands.h"
 #include "wear/particles/fft.h"
 #include "wear/particles/particle_model.h"
@@ -263,7 +264,10 @@ void add_particles_command(CLI::App& app) {
       ->check(finite_range(1, 1e6));
   cmd->add_flag("--no-film", opts->no_film, "drop transfer films (homogeneous model)");
   cmd->add_flag("--no-plots", opts->no_plots, "skip the PNG plots");
-  cmd->callback([opts]() { run_particles(*opts); });
+  cmd->callback([opts]() {
+    io::check_output_folder(opts->out);  // before any work
+    run_particles(*opts);
+  });
 }
 
 }  // namespace kneesim::cli

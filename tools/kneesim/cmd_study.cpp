@@ -9,6 +9,7 @@
 #include "analysis/study/study.h"
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
+#include "engine/io/output_folder.h"
 #include "tools/kneesim/commands.h"
 #include "wear/checkpoint.h"
 
@@ -127,7 +128,10 @@ void add_study_command(CLI::App& app) {
                 "continue the study in DIR from its journal (no finished trial is lost or run "
                 "again)");
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args] {
+    io::check_output_folder(args->out);  // before any work
+    run(*args);
+  });
 }
 
 }  // namespace kneesim::cli

@@ -8,6 +8,7 @@
 #include "engine/io/atomic_file.h"
 #include "engine/io/table.h"
 #include "models/config.h"
+#include "engine/io/output_folder.h"
 #include "tools/kneesim/commands.h"
 
 namespace kneesim::cli {
@@ -157,7 +158,10 @@ void add_wear_command(CLI::App& app) {
   cmd->add_flag("--allow-any-wear-factor", args->allow_any_wear_factor,
                 "accept wear factors outside 1e-12..1e-6 mm^3/(N mm)");
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
-  cmd->callback([args] { run(*args); });
+  cmd->callback([args] {
+    io::check_output_folder(args->out);  // before any work
+    run(*args);
+  });
 }
 
 }  // namespace kneesim::cli

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "analysis/diagnosis/forces_diagnosis.h"
+#include "engine/io/output_folder.h"
 #include "tools/kneesim/diagnose_options.h"
 
 namespace kneesim::cli {
@@ -46,7 +47,10 @@ void add_diagnose_forces(CLI::App* diagnose) {
   cmd->add_option("--threads", opt->run.threads, "simulations run at a time")
       ->capture_default_str();
   add_diagnose_common_options(cmd, opt->common);
-  cmd->callback([opt] { run_diagnose_forces(*opt); });
+  cmd->callback([opt] {
+    io::check_output_folder(opt->common.out);  // before any work
+    run_diagnose_forces(*opt);
+  });
 }
 
 }  // namespace kneesim::cli

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "analysis/diagnosis/knee_diagnosis.h"
+#include "engine/io/output_folder.h"
 #include "tools/kneesim/diagnose_options.h"
 
 namespace kneesim::cli {
@@ -74,7 +75,10 @@ void add_diagnose_knee_wear(CLI::App* diagnose) {
                   "loop (0: wear linear in cycles on the pristine insert)")
       ->capture_default_str();
   add_diagnose_common_options(cmd, opt->common);
-  cmd->callback([opt] { run_diagnose_knee_wear(*opt); });
+  cmd->callback([opt] {
+    io::check_output_folder(opt->common.out);  // before any work
+    run_diagnose_knee_wear(*opt);
+  });
 }
 
 void add_diagnose_kinematics(CLI::App* diagnose) {
@@ -93,7 +97,10 @@ void add_diagnose_kinematics(CLI::App* diagnose) {
   cmd->add_flag("--multi-start", opt->multi_start,
                 "multi-start the full-data fits (about three times the simulations)");
   add_diagnose_common_options(cmd, opt->common);
-  cmd->callback([opt] { run_diagnose_kinematics(*opt); });
+  cmd->callback([opt] {
+    io::check_output_folder(opt->common.out);  // before any work
+    run_diagnose_kinematics(*opt);
+  });
 }
 
 }  // namespace kneesim::cli

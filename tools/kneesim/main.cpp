@@ -1,6 +1,7 @@
 // The `kneesim` program: sub-commands run, wear, compare, study, diagnose, bor, particles.
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <string>
 
 #include "engine/errors.h"
@@ -46,6 +47,12 @@ int main(int argc, char** argv) {
   } catch (const kneesim::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // a file operation that failed mid-run (disk full, folder removed): one sentence, not the
+    // library's "filesystem error: ..." text
+    std::fprintf(stderr, "error: could not write or read '%s' (%s).\n", e.path1().c_str(),
+                 e.code().message().c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

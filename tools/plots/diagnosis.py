@@ -13,6 +13,35 @@ import matplotlib.pyplot as plt  # noqa: E402
 from plotio import save_figure  # noqa: E402
 
 
+# axis labels in words and units for the columns the diagnoses write; any other name is
+# spelled out from its unit suffix (e.g. "contact_area_mm2" -> "contact area [mm²]")
+LABELS = {
+    "volume_mm3": "wear volume [mm³]",
+    "max_depth_mm": "maximum wear depth [mm]",
+    "depth_mm": "wear depth [mm]",
+    "ap_mm": "AP translation, tibia anterior [mm]",
+    "ie_deg": "IE rotation, tibia internal [deg]",
+    "flexion_deg": "flexion [deg]",
+    "medial_force_N": "medial compartment force [N]",
+    "lateral_force_N": "lateral compartment force [N]",
+    "axial_force_N": "axial force [N]",
+    "gait_pct": "gait cycle [%]",
+    "cycles": "cycles [thousands]",
+    "load_N": "load [N]",
+}
+UNITS = {"mm3": "mm³", "mm2": "mm²", "mm": "mm", "deg": "deg", "N": "N", "Nm": "N m",
+         "MPa": "MPa", "pct": "%", "s": "s", "kN": "kN"}
+
+
+def label(name):
+    if name in LABELS:
+        return LABELS[name]
+    words, _, unit = name.rpartition("_")
+    if words and unit in UNITS:
+        return f"{words.replace('_', ' ')} [{UNITS[unit]}]"
+    return name.replace("_", " ")
+
+
 def read(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))
@@ -28,7 +57,7 @@ def main():
     groups = list(dict.fromkeys(r["group"] for r in res))
     colours = {g: c for g, c in zip(groups, plt.rcParams["axes.prop_cycle"].by_key()["color"])}
     scale = 1e3 if xname == "cycles" else 1.0
-    xlabel = "cycles [thousands]" if xname == "cycles" else xname
+    xlabel = label(xname)
     fig, axes = plt.subplots(2, len(quantities), figsize=(max(7.0, 5.2 * len(quantities)), 7.5),
                              squeeze=False, sharex="col")
     for j, q in enumerate(quantities):
@@ -49,8 +78,8 @@ def main():
             bottom.plot(xs, [float(r["measured"]) - float(r["extended"]) for r in rows], "o",
                         mfc="none", color=colours[g], label=f"measured - extended {g}")
         bottom.axhline(0.0, color="k", lw=0.8)
-        top.set_ylabel(q)
-        bottom.set_ylabel("residual " + q)
+        top.set_ylabel(label(q))
+        bottom.set_ylabel("residual (measured - model)\n" + label(q), fontsize=9)
         bottom.set_xlabel(xlabel)
         top.grid(alpha=0.3)
         bottom.grid(alpha=0.3)

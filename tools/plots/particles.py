@@ -9,7 +9,7 @@ import sys
 import matplotlib
 import matplotlib.pyplot as plt
 
-from plotio import save_figure  # noqa: E402
+from plotio import readable_log_axis, save_figure  # noqa: E402
 
 
 def read_table(path):
@@ -29,29 +29,40 @@ def main(out):
     its = read_table(os.path.join(out, "iterations.csv"))
     title = f"{summary['pair']} at {summary['load_N']:g} N"
 
-    # size histogram
+    # size histogram of the particles summary.json reports: those of the steady window
+    # (iterations from steady_from_iteration on), not the run-in's
+    first = summary.get("steady_from_iteration", 1)
+    keep = [i for i, it in enumerate(parts.get("iteration", [])) if it >= first]
     fig, ax = plt.subplots(figsize=(6, 4))
-    if parts:
-        ax.hist([parts["eq_radius_nm"], parts["length_nm"], parts["thickness_nm"]], bins=30,
-                label=["equivalent radius", "length", "thickness"], histtype="step")
+    if keep:
+        ax.hist([[parts[k][i] for i in keep] for k in ("eq_radius_nm", "length_nm", "thickness_nm")],
+                bins=30, label=["equivalent radius", "length", "thickness"], histtype="step")
         ax.axvspan(100, 1000, color="0.9", zorder=0, label="0.1-1 um (most active)")
         ax.legend()
     else:
-        ax.text(0.5, 0.5, "no particles: no yielded region reaches the surface",
-                ha="center", va="center", transform=ax.transAxes)
+        ax.text(0.5, 0.5, "no particles in the steady window: no yielded region reaches the "
+                "surface", ha="center", va="center", transform=ax.transAxes, wrap=True)
     ax.set_xlabel("size [nm]")
     ax.set_ylabel("particles")
-    ax.set_title(title)
+    ax.set_title(f"{title}\n{len(keep)} particles of iterations {first}-{len(its.get('iteration', []))} "
+                 f"(the steady window of summary.json; {len(parts.get('iteration', []))} in all)",
+                 fontsize=9)
     fig.tight_layout()
     save_figure(fig, os.path.join(out, "size_histogram.png"))
 
     # mean size vs iteration
     fig, ax = plt.subplots(figsize=(6, 4))
     if its:
-        ax.plot(its["iteration"], its["mean_eq_radius_nm"], "o-", label="mean eq. radius")
+        ax.plot(its["iteration"], its["mean_eq_radius_nm"], "o-",
+                label="mean equivalent radius (left axis)")
         ax2 = ax.twinx()
-        ax2.plot(its["iteration"], its["particles"], "s--", color="tab:orange", label="particles")
+        ax2.plot(its["iteration"], its["particles"], "s--", color="tab:orange",
+                 label="particles per iteration (right axis)")
         ax2.set_ylabel("particles per iteration")
+        # one legend for the lines of both axes
+        h1, l1 = ax.get_legend_handles_labels()
+        h2, l2 = ax2.get_legend_handles_labels()
+        ax.legend(h1 + h2, l1 + l2, fontsize=8, loc="best")
     ax.axvline(summary.get("steady_from_iteration", 1), color="0.5", ls=":")
     ax.set_xlabel("iteration")
     ax.set_ylabel("mean equivalent radius [nm]")
@@ -63,15 +74,17 @@ def main(out):
     # it flows with the disk), and the material the track loses per iteration
     if its and "track_rq_nm" in its:
         fig, ax = plt.subplots(figsize=(6, 4))
-        ax.plot(its["iteration"], its["track_rq_nm"], "-", label="worn track Rq")
+        ax.plot(its["iteration"], its["track_rq_nm"], "-", label="worn track Rq (left axis)")
         if "counterface_rq_nm" in its:
-            ax.plot(its["iteration"], its["counterface_rq_nm"], "-", label="counterface Rq")
+            ax.plot(its["iteration"], its["counterface_rq_nm"], "-",
+                    label="counterface Rq (left axis)")
         ax.set_yscale("log")
+        readable_log_axis(ax.yaxis)
         ax.set_xlabel("iteration")
-        ax.set_ylabel("rms roughness [nm]")
+        ax.set_ylabel("rms roughness [nm] (log scale)")
         ax2 = ax.twinx()
         ax2.plot(its["iteration"], its["particle_volume_um3"], ":", color="tab:red",
-                 label="particle volume")
+                 label="particle volume (right axis)")
         ax2.set_ylabel("particle volume per iteration [um^3]")
         ax.axvline(summary.get("steady_from_iteration", 1), color="0.5", ls=":")
         lines = ax.get_legend_handles_labels()

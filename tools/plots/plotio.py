@@ -1,6 +1,9 @@
 """Shared by the plot scripts: CSV columns in, PNG files out (written atomically)."""
 import csv
+import math
 import os
+
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 
 def read_columns(path):
@@ -16,3 +19,21 @@ def save_figure(fig, path, dpi=120):
     tmp = path + ".tmp.png"
     fig.savefig(tmp, dpi=dpi)
     os.replace(tmp, path)
+
+
+def readable_log_axis(axis):
+    """Plain-number labels on a log axis after the data are drawn: matplotlib labels only the
+    powers of ten, so an axis spanning less than a decade or two showed one label or none.
+    Ticks at 1-2-5 per decade (every 1-9 when the axis spans under a decade), labelled as
+    plain numbers; whole decades only beyond six decades."""
+    lo, hi = axis.get_view_interval()
+    decades = math.log10(hi / lo) if lo > 0 and hi > lo else 1.0
+    if decades > 6:
+        subs = (1.0,)
+    elif decades > 1:
+        subs = (1.0, 2.0, 5.0)
+    else:
+        subs = tuple(float(k) for k in range(1, 10))
+    axis.set_major_locator(LogLocator(base=10, subs=subs, numticks=30))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(NullFormatter())

@@ -22,7 +22,7 @@ struct ForcesDiagnosisOptions {
   ForcesCaseOptions case_options;
   int threads = 2;                // simulations run at a time [-]
   DiagnosisOptions options;
-  std::string out = "out/diagnose-forces";
+  std::string out = "kneesim-diagnose-forces";
 };
 
 struct ForcesDiagnosisReport {

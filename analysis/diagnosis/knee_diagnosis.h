@@ -21,7 +21,7 @@ struct KneeWearDiagnosisOptions {
   int geometry_states = 4;                // worn states of the forward model's geometry
                                           // path, 0 = pristine-linear (knee_wear_table.h) [-]
   DiagnosisOptions options;
-  std::string out = "out/diagnose-knee-wear";
+  std::string out = "kneesim-diagnose-knee-wear";
 };
 
 struct KneeWearDiagnosisReport {
@@ -40,7 +40,7 @@ struct KinematicsDiagnosisOptions {
   std::vector<std::string> sets; // key=value overrides
   double stance_end_pct = 60.0;  // end of stance in the phase split [%]
   DiagnosisOptions options;      // multi_start included
-  std::string out = "out/diagnose-kinematics";
+  std::string out = "kneesim-diagnose-kinematics";
 };
 
 struct KinematicsDiagnosisReport {

@@ -86,7 +86,7 @@ CycleFigures calc_cycle_figures(const std::vector<engine::Frame>& frames) {
     }
   }
   fig.ap_rom_mm = ap_hi - ap_lo;
-  fig.ie_rom_mm = ie_hi - ie_lo;
+  fig.ie_rom_deg = ie_hi - ie_lo;
   fig.mean_peak_pressure_MPa = in_contact ? peak_sum / in_contact : 0.0;
   fig.mean_contact_area_mm2 = in_contact ? area_sum / in_contact : 0.0;
   fig.medial_fraction_stance = med + lat > 0 ? med / (med + lat) : 0.0;
@@ -121,8 +121,10 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
 nlohmann::json describe_figures(const CycleFigures& f) {
   nlohmann::json j;
   j["ap_rom_mm"] = f.ap_rom_mm;
-  j["ie_rom_deg"] = f.ie_rom_mm;
-  j["ie_rom_mm"] = f.ie_rom_mm;  // the key; the value is in degrees (see README)
+  j["ie_rom_deg"] = f.ie_rom_deg;
+  // deprecated alias of ie_rom_deg under the first release's misnamed key (degrees, not mm);
+  // written in this release only, for scripts that read it (README)
+  j["ie_rom_mm"] = f.ie_rom_deg;
   j["peak_pressure_MPa"] = f.peak_pressure_MPa;
   j["mean_peak_pressure_MPa"] = f.mean_peak_pressure_MPa;
   j["peak_contact_force_N"] = f.peak_contact_force_N;

@@ -17,7 +17,7 @@ namespace kneesim::run {
 io::Table make_kinematics_table(const std::vector<engine::Frame>& frames);
 
 struct CycleFigures {
-  double ap_rom_mm = 0.0, ie_rom_mm = 0.0;  // max - min over the cycle
+  double ap_rom_mm = 0.0, ie_rom_deg = 0.0;  // max - min over the cycle [mm], [deg]
   double peak_pressure_MPa = 0.0;           // max over the cycle
   double mean_peak_pressure_MPa = 0.0;      // mean over the frames in contact
   double peak_contact_force_N = 0.0;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <exception>
+#include <limits>
 #include <thread>
 #include <cstdio>
 #include <numbers>
@@ -34,7 +35,7 @@ io::Table make_wear_table(const std::vector<wear::UpdateRecord>& records, double
   t.columns = {"cycles",           "volume_mm3",        "volume_depth_mm3",
                "mass_mg",          "max_depth_mm",      "medial_volume_mm3",
                "lateral_volume_mm3", "contact_area_mm2", "peak_pressure_MPa",
-               "mean_peak_pressure_MPa", "ap_rom_mm",   "ie_rom_mm",
+               "mean_peak_pressure_MPa", "ap_rom_mm",   "ie_rom_deg",
                "refinements"};
   for (const auto& r : records) {
     t.add_row({r.cycles, r.volume * kM3ToMm3, r.volume_depth * kM3ToMm3,
@@ -46,15 +47,19 @@ io::Table make_wear_table(const std::vector<wear::UpdateRecord>& records, double
   return t;
 }
 
-void write_depth_map(const std::filesystem::path& path, const engine::InsertSurface& s,
-                     const std::vector<double>& depth) {
+io::VtpSurface make_depth_map(const engine::InsertSurface& s, const std::vector<double>& depth) {
   io::VtpSurface v;
   for (const auto& p : s.vertices_T) v.points_mm.push_back(p * 1e3);
   v.triangles = s.triangles;
   io::VtpArray d{"wear_depth_mm", {}};
   for (double x : depth) d.values.push_back(x * 1e3);
   v.point_data.push_back(std::move(d));
-  io::write_vtp(path, v);
+  return v;
+}
+
+void write_depth_map(const std::filesystem::path& path, const engine::InsertSurface& s,
+                     const std::vector<double>& depth) {
+  io::write_vtp(path, make_depth_map(s, depth));
 }
 
 // least-squares slope of volume against cycles through the updates after the first [mm3/Mc]
@@ -145,6 +150,43 @@ static wear::WearLawParams make_wear_law(const WearJob& j) {
   return law;
 }
 
+// geometry updates of the job: the intervals of --update-every or --schedule (its last entry
+// repeated) summed until they reach the cycles, counted up to `limit` + 1
+static long count_updates(const WearJob& j, long limit) {
+  long updates = 0;
+  for (long done = 0; done < j.cycles && updates <= limit; ++updates) {
+    done += j.schedule.empty()
+                ? j.update_every
+                : j.schedule[std::min(static_cast<size_t>(updates), j.schedule.size() - 1)];
+  }
+  return updates;
+}
+
+// the depth maps (one .vtp per update and the pristine one) against the free space of the
+// output folder: refused with the estimate when they cannot fit, a note above 2 GB. One map's
+// size is that of its text with a depth of nine significant digits at every vertex (a worn
+// insert's; the pristine map's zeros are shorter), formatted once.
+static void check_output_size(const WearJob& j, const engine::InsertSurface& s) {
+  if (!j.depth_maps) return;
+  const std::vector<double> typical(s.vertices_T.size(), 1.23456789e-4);  // [m]
+  const double per_map = static_cast<double>(io::format_vtp(make_depth_map(s, typical)).size());
+  const long maps = count_updates(j, std::numeric_limits<long>::max() - 1) + 1;
+  const double total = per_map * static_cast<double>(maps);
+  const std::string what = std::to_string(maps) + " depth maps (wear_depth_<cycles>.vtp) of about " +
+                           io::format_bytes(per_map) + ", about " + io::format_bytes(total) +
+                           " in all";
+  const double free = static_cast<double>(io::free_bytes(j.out));
+  if (total > free) {
+    throw InputError("--out '" + j.out.string() + "': the run would write " + what + ", more "
+                     "than the " + io::format_bytes(free) + " free there; raise --update-every "
+                     "(fewer updates) or pass --no-depth-maps.");
+  }
+  if (total > 2e9) {
+    std::fprintf(stderr, "note: the run writes %s into %s (--no-depth-maps skips them)\n",
+                 what.c_str(), j.out.string().c_str());
+  }
+}
+
 void check_wear_job(const WearJob& j) {
   constexpr long kMaxUpdates = 10000;
   make_wear_law(j);
@@ -171,12 +213,7 @@ void check_wear_job(const WearJob& j) {
   }
   // every update simulates a gait cycle and writes a depth map: refuse a run of millions of
   // them (--update-every 1 at 5 Mc would write about a terabyte) before it starts
-  long updates = 0;
-  for (long done = 0; done < j.cycles && updates <= kMaxUpdates; ++updates) {
-    done += j.schedule.empty()
-                ? j.update_every
-                : j.schedule[std::min(static_cast<size_t>(updates), j.schedule.size() - 1)];
-  }
+  const long updates = count_updates(j, kMaxUpdates);
   if (updates > kMaxUpdates) {
     throw InputError("--cycles = " + std::to_string(j.cycles) + " with " +
                      (j.schedule.empty() ? "--update-every = " + std::to_string(j.update_every)
@@ -219,6 +256,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
   io::check_output_folder(j.out);  // before the model is built and the loop starts
   if (!resume) clear_wear_outputs(j.out);
   const models::BuiltModel built = models::build_model(j.config);
+  check_output_size(j, built.model.insert);  // still before the first cycle
   const models::MaterialConfig& mat = built.material;
   const double density_mg_per_mm3 = mat.density_g_per_cm3;  // g/cm^3 == mg/mm^3
 
@@ -279,9 +317,13 @@ nlohmann::json run_wear_job(const WearJob& j) {
   summary["mean_peak_pressure_MPa"] = first.mean_peak_pressure * 1e-6;
   summary["peak_pressure_MPa"] = first.peak_pressure * 1e-6;
   summary["ap_rom_mm"] = first.ap_rom * 1e3;
-  summary["ie_rom_mm"] = first.ie_rom * 180.0 / std::numbers::pi;
+  summary["ie_rom_deg"] = first.ie_rom * 180.0 / std::numbers::pi;
   summary["final_ap_rom_mm"] = last.ap_rom * 1e3;
-  summary["final_ie_rom_mm"] = last.ie_rom * 180.0 / std::numbers::pi;
+  summary["final_ie_rom_deg"] = last.ie_rom * 180.0 / std::numbers::pi;
+  // deprecated aliases under the first release's misnamed keys (degrees, not mm); written in
+  // this release only, for scripts that read them (README)
+  summary["ie_rom_mm"] = summary["ie_rom_deg"];
+  summary["final_ie_rom_mm"] = summary["final_ie_rom_deg"];
   summary["status"] = "complete";
 
   // final depth as points for the top-view contour plot

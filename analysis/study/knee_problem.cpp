@@ -94,7 +94,7 @@ StudyProblem make_knee_problem(const KneeStudySetup& s) {
       return out;
     }
     const run::CycleFigures fig = run::calc_cycle_figures(r.frames);
-    out.scalars = {fig.ap_rom_mm, fig.ie_rom_mm, fig.peak_pressure_MPa};
+    out.scalars = {fig.ap_rom_mm, fig.ie_rom_deg, fig.peak_pressure_MPa};
     std::vector<double> ap, ie;
     for (const auto& f : r.frames) {
       ap.push_back(f.joint.ap * 1e3);

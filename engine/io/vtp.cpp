@@ -25,7 +25,7 @@ void append_array(std::string& out, const VtpArray& a, size_t expected, const ch
 
 }  // namespace
 
-void write_vtp(const std::filesystem::path& path, const VtpSurface& s) {
+std::string format_vtp(const VtpSurface& s) {
   std::string out;
   out.reserve(64 * (s.points_mm.size() + s.triangles.size()));
   out += "<?xml version=\"1.0\"?>\n";
@@ -61,7 +61,11 @@ void write_vtp(const std::filesystem::path& path, const VtpSurface& s) {
     out += "</CellData>\n";
   }
   out += "</Piece>\n</PolyData>\n</VTKFile>\n";
-  write_file_atomic(path, out);
+  return out;
+}
+
+void write_vtp(const std::filesystem::path& path, const VtpSurface& s) {
+  write_file_atomic(path, format_vtp(s));
 }
 
 }  // namespace kneesim::io

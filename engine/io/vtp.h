@@ -21,6 +21,10 @@ struct VtpSurface {
   std::vector<VtpArray> cell_data;
 };
 
+// the file's text (the size of a run's outputs is estimated from it before the run)
+std::string format_vtp(const VtpSurface& surface);
+
+// writes format_vtp(surface) atomically
 void write_vtp(const std::filesystem::path& path, const VtpSurface& surface);
 
 }  // namespace kneesim::io

@@ -144,3 +144,21 @@ TEST_CASE("a failed wear run keeps a partial table; a good run after it leaves n
   CHECK_FALSE(fs::exists(out / "summary.failed.json"));
   CHECK_FALSE(fs::exists(out / "wear.partial.csv"));
 }
+
+TEST_CASE("wear --no-depth-maps writes no depth maps") {
+  // the switch the output-size refusal suggests (a run whose maps would not fit in the free
+  // space of --out is refused with the estimate before the first cycle)
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  const fs::path out = tmp.path / "w";
+  const Result r = run_kneesim({"wear", "--cycles", "2", "--update-every", "1", "--set",
+                                "implant.edge_length_mm=3", "--quiet", "--no-depth-maps",
+                                "--out", out.string()},
+                               tmp.path);
+  INFO("stderr: " << r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(fs::exists(out / "summary.json"));
+  for (const auto& e : fs::directory_iterator(out)) {
+    CHECK(e.path().filename().string().rfind("wear_depth_", 0) != 0);
+  }
+}

@@ -46,13 +46,15 @@ TEST_CASE("kneesim run writes the complete result set") {
 
   // summary.json with the required keys, all finite numbers, and plausible values
   const auto summary = nlohmann::json::parse(slurp(out / "summary.json"));
-  for (const char* k : {"ap_rom_mm", "ie_rom_mm", "peak_pressure_MPa", "mean_peak_pressure_MPa",
+  for (const char* k : {"ap_rom_mm", "ie_rom_deg", "peak_pressure_MPa", "mean_peak_pressure_MPa",
                         "seconds_per_cycle", "steps_per_cycle"}) {
     REQUIRE_MESSAGE(summary.contains(k), "summary.json lacks " << k);
     CHECK(summary[k].is_number());
   }
   CHECK(summary["ap_rom_mm"].get<double>() > 0.0);
-  CHECK(summary["ie_rom_mm"].get<double>() > 0.0);
+  CHECK(summary["ie_rom_deg"].get<double>() > 0.0);
+  // the first release's misnamed key stays one release as an alias of the same value (README)
+  CHECK(summary["ie_rom_mm"] == summary["ie_rom_deg"]);
   CHECK(summary["peak_pressure_MPa"].get<double>() >=
         summary["mean_peak_pressure_MPa"].get<double>());
   CHECK(summary["steps_per_cycle"].get<double>() >= 100.0);
@@ -67,7 +69,7 @@ TEST_CASE("kneesim run writes the complete result set") {
     CHECK(std::abs(pct - static_cast<double>(i)) <= half_step_pct + 1e-9);
   }
   MESSAGE("kneesim run (edge 2 mm): AP ROM " << summary["ap_rom_mm"] << " mm, IE ROM "
-          << summary["ie_rom_mm"] << " deg, peak pressure " << summary["peak_pressure_MPa"]
+          << summary["ie_rom_deg"] << " deg, peak pressure " << summary["peak_pressure_MPa"]
           << " MPa, " << summary["seconds_per_cycle"] << " s per cycle, "
           << summary["steps_per_cycle"] << " steps per cycle");
 

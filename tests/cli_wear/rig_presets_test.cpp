@@ -119,7 +119,7 @@ TEST_CASE("every rig preset runs end to end in run, wear and compare") {
     const auto ws = nlohmann::json::parse(slurp(wear_dir / "summary.json"));
     CHECK(ws["volume_mm3"].get<double>() > 0.0);
     CHECK(ws["ap_rom_mm"].get<double>() == doctest::Approx(ap_rom).epsilon(1e-4));
-    CHECK(ws["ie_rom_mm"].get<double>() == doctest::Approx(ie_rom).epsilon(1e-4));
+    CHECK(ws["ie_rom_deg"].get<double>() == doctest::Approx(ie_rom).epsilon(1e-4));
     const Csv wcsv = read_csv(wear_dir / "wear.csv");
     REQUIRE(wcsv.rows.size() == 2);
     CHECK(wcsv.at(0, "cycles") == 0.0);

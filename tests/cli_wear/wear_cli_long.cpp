@@ -46,7 +46,7 @@ TEST_CASE("kneesim compare: comparison.csv with the columns and the rankings of 
   std::map<std::string, size_t> col;
   for (size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
   for (const char* c : {"material", "volume_mm3", "mass_mg", "max_depth_mm",
-                        "mean_peak_pressure_MPa", "ap_rom_mm", "ie_rom_mm"}) {
+                        "mean_peak_pressure_MPa", "ap_rom_mm", "ie_rom_deg"}) {
     REQUIRE_MESSAGE(col.count(c), "comparison.csv lacks the column " << c);
   }
   std::map<std::string, std::map<std::string, double>> row;  // material -> column -> value
@@ -64,11 +64,11 @@ TEST_CASE("kneesim compare: comparison.csv with the columns and the rankings of 
     MESSAGE(std::string(m) << ": volume " << row[m]["volume_mm3"] << " mm^3, mass " << row[m]["mass_mg"]
               << " mg, max depth " << row[m]["max_depth_mm"] << " mm, mean peak pressure "
               << row[m]["mean_peak_pressure_MPa"] << " MPa, AP " << row[m]["ap_rom_mm"]
-              << " mm, IE " << row[m]["ie_rom_mm"] << " deg");
+              << " mm, IE " << row[m]["ie_rom_deg"] << " deg");
     CHECK(row[m]["volume_mm3"] > 0.0);
     CHECK(row[m]["max_depth_mm"] > 0.0);
     CHECK(row[m]["ap_rom_mm"] > 0.0);
-    CHECK(row[m]["ie_rom_mm"] > 0.0);
+    CHECK(row[m]["ie_rom_deg"] > 0.0);
   }
   // each row's settled figures are the material's `kneesim run` ones: the same cycle, though
   // not bit for bit (the wear loop starts a cycle with a fresh contact-sleeping schedule, which
@@ -84,7 +84,7 @@ TEST_CASE("kneesim compare: comparison.csv with the columns and the rankings of 
     CHECK(row[m]["mean_peak_pressure_MPa"] ==
           doctest::Approx(s["mean_peak_pressure_MPa"].get<double>()).epsilon(1e-3));
     CHECK(row[m]["ap_rom_mm"] == doctest::Approx(s["ap_rom_mm"].get<double>()).epsilon(1e-3));
-    CHECK(row[m]["ie_rom_mm"] == doctest::Approx(s["ie_rom_deg"].get<double>()).epsilon(1e-3));
+    CHECK(row[m]["ie_rom_deg"] == doctest::Approx(s["ie_rom_deg"].get<double>()).epsilon(1e-3));
   }
   // the markdown table and each material's own wear run are there too
   CHECK(fs::exists(out / "comparison.md"));

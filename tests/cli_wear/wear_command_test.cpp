@@ -46,9 +46,11 @@ TEST_CASE("kneesim wear: outputs; killed and resumed gives a byte-identical wear
     std::getline(in, header);
     const std::vector<std::string> cols = split(header, ',');
     for (const char* c : {"cycles", "volume_mm3", "mass_mg", "max_depth_mm", "medial_volume_mm3",
-                          "lateral_volume_mm3", "contact_area_mm2", "ap_rom_mm", "ie_rom_mm"}) {
+                          "lateral_volume_mm3", "contact_area_mm2", "ap_rom_mm", "ie_rom_deg"}) {
       CHECK_MESSAGE(std::find(cols.begin(), cols.end(), c) != cols.end(), "missing column " << c);
     }
+    // the IE range is in degrees and named so (issue 15: it was ie_rom_mm)
+    CHECK(std::find(cols.begin(), cols.end(), "ie_rom_mm") == cols.end());
     CHECK(count_lines(csv1) == 6);  // header, cycle 0 and four updates
     const auto s = nlohmann::json::parse(slurp(d1 / "summary.json"));
     for (const char* k : {"wear_rate_mm3_per_Mc", "volume_mm3", "mass_mg", "max_depth_mm", "seconds"}) {

@@ -28,7 +28,7 @@ struct BorOptions {
   double step = 10000.0;
   std::string effect = "none";
   std::vector<std::string> effect_params;
-  std::string out = "out/bor";
+  std::string out = "kneesim-bor";
   BorRigOptions rig;
 };
 

@@ -81,7 +81,7 @@ void run(const CompareArgs& a) {
   t.label_name = "material";
   t.columns = {"volume_mm3",      "mass_mg",          "max_depth_mm",
                "wear_rate_mm3_per_Mc", "mean_peak_pressure_MPa", "peak_pressure_MPa",
-               "ap_rom_mm",       "ie_rom_mm",        "elastic_modulus_MPa",
+               "ap_rom_mm",       "ie_rom_deg",        "elastic_modulus_MPa",
                "wear_factor_mm3_per_Nmm", "friction", "dt_s", "seconds"};
   std::string md = "| material | volume (mm³) | mass (mg) | max depth (mm) | mean peak pressure "
                    "(MPa) | AP ROM (mm) | IE ROM (deg) |\n|---|---|---|---|---|---|---|\n";
@@ -92,14 +92,14 @@ void run(const CompareArgs& a) {
     t.label_column.push_back(a.materials[i]);
     t.add_row({r["volume_mm3"], r["mass_mg"], r["max_depth_mm"], r["wear_rate_mm3_per_Mc"],
                r["mean_peak_pressure_MPa"], r["peak_pressure_MPa"], r["ap_rom_mm"],
-               r["ie_rom_mm"], mat.elastic_modulus_MPa, mat.wear_factor_mm3_per_Nmm,
+               r["ie_rom_deg"], mat.elastic_modulus_MPa, mat.wear_factor_mm3_per_Nmm,
                r["friction"], r["dt_s"], r["seconds"]});
     char line[256];
     std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.3f | %.1f | %.2f | %.2f |\n",
                   a.materials[i].c_str(), r["volume_mm3"].get<double>(),
                   r["mass_mg"].get<double>(), r["max_depth_mm"].get<double>(),
                   r["mean_peak_pressure_MPa"].get<double>(), r["ap_rom_mm"].get<double>(),
-                  r["ie_rom_mm"].get<double>());
+                  r["ie_rom_deg"].get<double>());
     md += line;
     all[a.materials[i]] = r;
   }

@@ -51,7 +51,7 @@ void run_diagnose_bor(const DiagnoseBorOptions& o) {
 
 void add_diagnose_bor(CLI::App* diagnose) {
   auto opt = std::make_shared<DiagnoseBorOptions>();
-  opt->common.out = "out/diagnose-bor";
+  opt->common.out = "kneesim-diagnose-bor";
   CLI::App* cmd = diagnose->add_subcommand(
       "bor", "block-on-ring wear: CSV with load_N, cycles, volume_mm3 [, depth_mm, specimen]");
   cmd->add_option("--measured", opt->measured, "measured CSV file")->required();

@@ -35,7 +35,7 @@ struct ParticlesOptions {
   std::string pair;
   double load_N = -1.0;
   double contact_pressure_MPa = -1.0;
-  std::string out = "particles_out";
+  std::string out = "kneesim-particles";
   int max_iterations = 0;
   bool no_film = false;
   bool no_plots = false;

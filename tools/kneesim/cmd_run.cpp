@@ -44,7 +44,7 @@ void run(const RunArgs& a) {
     std::printf("AP ROM %.2f mm, IE ROM %.2f deg, peak pressure %.1f MPa, peak contact force "
                 "%.0f N (applied %.0f N), medial share in stance %.0f %%, %.3f s per cycle\n"
                 "results in %s\n",
-                fig.ap_rom_mm, fig.ie_rom_mm, fig.peak_pressure_MPa, fig.peak_contact_force_N,
+                fig.ap_rom_mm, fig.ie_rom_deg, fig.peak_pressure_MPa, fig.peak_contact_force_N,
                 fig.peak_axial_load_N, 100.0 * fig.medial_fraction_stance,
                 r.seconds / cycles, job.out.string().c_str());
   }

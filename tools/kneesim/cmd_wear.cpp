@@ -25,6 +25,7 @@ struct WearArgs {
   bool resume = false;
   bool allow_any_wear_factor = false;
   bool quiet = false;
+  bool no_depth_maps = false;
   std::vector<long> convergence;  // update intervals of a convergence study
   std::string wear_law = "archard";
   std::vector<std::string> law_params;  // name=value
@@ -91,6 +92,7 @@ void run(const WearArgs& a) {
   job.resume = a.resume;
   job.allow_any_wear_factor = a.allow_any_wear_factor;
   job.quiet = a.quiet;
+  job.depth_maps = !a.no_depth_maps;
   job.wear_law = a.wear_law;
   job.law_params = a.law_params;
   std::ostringstream id;
@@ -157,6 +159,9 @@ void add_wear_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_flag("--allow-any-wear-factor", args->allow_any_wear_factor,
                 "accept wear factors outside 1e-12..1e-6 mm^3/(N mm)");
+  cmd->add_flag("--no-depth-maps", args->no_depth_maps,
+                "write no DIR/wear_depth_<cycles>.vtp (a run whose maps would not fit in the "
+                "free space of DIR is refused with the estimate; above 2 GB a note says so)");
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
   cmd->callback([args] {
     io::check_output_folder(args->out);  // before any work

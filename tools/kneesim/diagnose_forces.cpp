@@ -28,7 +28,7 @@ void run_diagnose_forces(DiagnoseForcesOptions o) {
 
 void add_diagnose_forces(CLI::App* diagnose) {
   auto opt = std::make_shared<DiagnoseForcesOptions>();
-  opt->common.out = "out/diagnose-forces";
+  opt->common.out = "kneesim-diagnose-forces";
   opt->run.config = std::string(KNEESIM_SOURCE_DIR) + "/models/examples/jw_measured_loads.toml";
   CLI::App* cmd = diagnose->add_subcommand(
       "forces", "medial and lateral compartment forces of an instrumented knee (e.g. the Grand "

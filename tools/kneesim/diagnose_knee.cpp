@@ -51,7 +51,7 @@ void run_diagnose_kinematics(const DiagnoseKinematicsOptions& o) {
 
 void add_diagnose_knee_wear(CLI::App* diagnose) {
   auto opt = std::make_shared<DiagnoseKneeWearOptions>();
-  opt->common.out = "out/diagnose-knee-wear";
+  opt->common.out = "kneesim-diagnose-knee-wear";
   CLI::App* cmd = diagnose->add_subcommand(
       "knee-wear", "knee simulator wear: CSV with condition, cycles, volume_mm3 [, max_depth_mm, "
                    "specimen]; conditions are [conditions.<name>] of the config");
@@ -83,7 +83,7 @@ void add_diagnose_knee_wear(CLI::App* diagnose) {
 
 void add_diagnose_kinematics(CLI::App* diagnose) {
   auto opt = std::make_shared<DiagnoseKinematicsOptions>();
-  opt->common.out = "out/diagnose-kinematics";
+  opt->common.out = "kneesim-diagnose-kinematics";
   opt->common.bootstrap = 10;  // every resample refits full simulations
   CLI::App* cmd = diagnose->add_subcommand(
       "kinematics", "tibiofemoral kinematics: CSV with gait_pct, ap_mm, ie_deg, or the DM "

@@ -11,7 +11,7 @@
 namespace kneesim::cli {
 
 struct DiagnoseCommonOptions {
-  std::string out = "out/diagnose";  // output folder
+  std::string out = "kneesim-diagnose";  // output folder
   int bootstrap = 200;               // bootstrap resamples [-]
   std::uint64_t seed = 1;            // bootstrap seed [-]
   double ic_threshold = 12.0;        // required AICc drop against none [-]

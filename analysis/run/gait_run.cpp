@@ -58,6 +58,18 @@ io::Table read_measured_kinematics(const models::Config& config) {
       config.implant_kind == "mesh" ? p_FR_F : Eigen::Vector3d::Zero()));
 }
 
+std::string find_non_finite(const io::Table& table) {
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    for (size_t c = 0; c < table.rows[r].size(); ++c) {
+      if (!std::isfinite(table.rows[r][c])) {
+        return table.columns[c] + " = " + std::to_string(table.rows[r][c]) + " in row " +
+               std::to_string(r + 1) + " of kinematics.csv";
+      }
+    }
+  }
+  return "";
+}
+
 models::Config load_run_config(const std::string& path, const std::vector<std::string>& sets) {
   std::vector<models::Override> overrides;
   for (const auto& s : sets) overrides.push_back(models::parse_override(s));
@@ -115,6 +127,16 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
                              std::to_string(result.failed_at) + " s: " +
                              engine::to_string(result.status) + "; the frames completed so far "
                              "are in " + (out / "kinematics.partial.csv").string());
+  }
+  // a finished run's outputs are finite numbers: a NaN that slipped past the engine's state
+  // check (e.g. in a contact figure) makes the run a failure, not a complete result
+  if (const std::string bad = find_non_finite(table); !bad.empty()) {
+    io::write_csv(out / "kinematics.partial.csv", table);
+    summary["status"] = "failed";
+    summary["failure"] = "non-finite output: " + bad;
+    io::write_json(out / "summary.failed.json", summary);
+    throw std::runtime_error("the run's outputs are not finite (" + bad + "); the frames are "
+                             "in " + (out / "kinematics.partial.csv").string());
   }
   for (size_t i = 0; i < result.maps.size(); ++i) {
     char name[64];

@@ -45,6 +45,9 @@ io::Table read_measured_kinematics(const models::Config& config);
 // counts the retries); shared by `kneesim run`, the studies and the diagnoses
 engine::RunResult simulate_gait(models::BuiltModel& built, const engine::RunOptions& options);
 
+// the first non-finite cell of a table ("<column> = nan in row <r> of kinematics.csv"), or ""
+std::string find_non_finite(const io::Table& table);
+
 // runs the job and writes its outputs (summary.json last: its presence marks a complete run);
 // on numerical trouble writes kinematics.partial.csv and summary.failed.json and throws
 // std::runtime_error with one sentence

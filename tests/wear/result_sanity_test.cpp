@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "analysis/run/gait_run.h"
 #include "wear/wear_loop.h"
 
 using kneesim::wear::check_update_record;
@@ -52,4 +53,18 @@ TEST_CASE("volume bookkeeping beyond 10 % fails a closed insert only") {
   CHECK(check_update_record(r, true).empty());
   r.volume = r.volume_depth * 0.899;
   CHECK_FALSE(check_update_record(r, true).empty());
+}
+
+TEST_CASE("a gait run's table with a non-finite cell is found, naming column and row") {
+  // kneesim run ends as failed (summary.failed.json, exit 1) on such a table instead of
+  // writing summary.json (analysis/run/gait_run.cpp)
+  kneesim::io::Table t;
+  t.columns = {"gait_pct", "ap_mm"};
+  t.add_row({0.0, 1.0});
+  t.add_row({1.0, 2.0});
+  CHECK(kneesim::run::find_non_finite(t).empty());
+  t.add_row({2.0, NAN});
+  CHECK(kneesim::run::find_non_finite(t) == "ap_mm = nan in row 3 of kinematics.csv");
+  t.rows[0][0] = INFINITY;
+  CHECK(kneesim::run::find_non_finite(t) == "gait_pct = inf in row 1 of kinematics.csv");
 }

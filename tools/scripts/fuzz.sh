@@ -19,16 +19,19 @@ CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Debug -DKNEESIM_FUZZ=ON 
   -DKNEESIM_BUILD_TOOLS=OFF >/dev/null
 targets=()
 for h in "${harnesses[@]}"; do targets+=("fuzz_$h"); done
-nice -n 15 cmake --build build-fuzz -j"$(nproc)" --target "${targets[@]}"
+nice -n 5 cmake --build build-fuzz -j"$(nproc)" --target "${targets[@]}"
 dir=build-fuzz/tests/fuzz
 run_one() {
   local h=$1
   mkdir -p "$dir/corpus_$h"
-  nice -n 15 "$dir/fuzz_$h" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
+  local rc=0
+  nice -n 5 "$dir/fuzz_$h" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
     -print_final_stats=1 -artifact_prefix="$dir/crash_${h}_" "$dir/corpus_$h" \
-    "tests/fuzz/corpus/$h" >"$dir/fuzz_$h.log" 2>&1
-  local rc=$?
-  echo "$h: exit $rc, $(grep -E 'stat::number_of_executed_units' "$dir/fuzz_$h.log" | tail -1)," \
+    "tests/fuzz/corpus/$h" >"$dir/fuzz_$h.log" 2>&1 || rc=$?
+  # the totals libFuzzer prints at the end (executions, exec/s, time) and the corpus grown
+  echo "$h: exit $rc," \
+    "$(grep -E 'stat::(number_of_executed_units|average_exec_per_sec)' "$dir/fuzz_$h.log" |
+       tr -s ' ' | tr '\n' ' ')" \
     "corpus $(ls "$dir/corpus_$h" | wc -l) files (log $dir/fuzz_$h.log)"
   return $rc
 }

@@ -4,6 +4,7 @@
 #include <assimp/scene.h>
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <assimp/Importer.hpp>
@@ -98,6 +99,24 @@ void put_f32(std::string& out, double v) {
   out.append(b, 4);
 }
 
+// assimp 5.2 (Debian 12) reads a PLY file whose header has no end_header line forever
+// (fuzz_mesh: tests/fuzz/regressions/mesh/hang_assimp_ply_no_end_header.bin did not return in
+// 120 s): a file named .ply or starting with the PLY magic must close its header within its
+// first 64 kB (real headers take a few hundred bytes) before assimp sees it
+void check_ply_header(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(65536, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".ply" && head.rfind("ply", 0) != 0) return;
+  if (head.find("end_header") == std::string::npos) {
+    fail(file, "is not a complete PLY file: its header has no end_header line within the first "
+               "64 kB.");
+  }
+}
+
 }  // namespace
 
 TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& options) {
@@ -114,6 +133,7 @@ TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& op
     fail(file, "the import rotation is not a proper rotation matrix (orthonormal, det +1).");
   }
 
+  check_ply_header(file);
   // read with assimp: triangulate and flatten the node hierarchy
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_COLORS);

@@ -1,5 +1,6 @@
 #include "wear/checkpoint.h"
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -41,6 +42,9 @@ class Reader {
     return v;
   }
   void get_doubles(double* p, size_t n) {
+    // an empty list reads nothing: p is then an empty vector's data(), which may be null, and
+    // memcpy(nullptr, ..., 0) is undefined (UBSan, fuzz_checkpoint)
+    if (n == 0) return;
     need(n * sizeof(double));
     std::memcpy(p, b_.data() + pos_, n * sizeof(double));
     pos_ += n * sizeof(double);
@@ -64,9 +68,11 @@ class Reader {
   size_t pos_ = 0;
 };
 
-// a frame as a flat list of doubles: to_doubles copies f into d, otherwise d into f
+// a frame as a flat list of doubles: to_doubles copies f into d, otherwise d into f; false
+// when d holds an element count that is no whole number in [0, 1e9] (a corrupt file: the
+// conversion to int of any other value is undefined behaviour; fuzz_checkpoint)
 constexpr size_t kFrameDoubles = 2 + 12 + 12 + 3 + 3 + 2 + 2 + 6 + 4 + 2;
-void frame_fields(engine::Frame& f, std::array<double, kFrameDoubles>& d, bool to_doubles) {
+bool frame_fields(engine::Frame& f, std::array<double, kFrameDoubles>& d, bool to_doubles) {
   size_t i = 0;
   auto field = [&](double& x) {
     if (to_doubles) {
@@ -95,8 +101,10 @@ void frame_fields(engine::Frame& f, std::array<double, kFrameDoubles>& d, bool t
   field(s.max_penetration_ratio);
   double n = s.elements_in_contact;
   field(n);
+  if (!(n >= 0.0 && n <= 1e9 && n == std::floor(n))) return false;
   s.elements_in_contact = static_cast<int>(n);
   field(s.omega_max);
+  return true;
 }
 
 }  // namespace
@@ -165,7 +173,11 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, uint64_t expected_
                      "--resume");
   }
   c.cycles_done = r.get<int64_t>();
-  c.next_update = static_cast<int>(r.get<int64_t>());
+  const int64_t next_update = r.get<int64_t>();
+  if (c.cycles_done < 0 || next_update < 0 || next_update > 1000000000) {
+    r.corrupt("negative cycle count or update index out of range");
+  }
+  c.next_update = static_cast<int>(next_update);
   c.dt = r.get<double>();
   if (!(c.dt > 0.0)) r.corrupt("time step not positive");
   c.state.time = r.get<double>();
@@ -186,7 +198,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, uint64_t expected_
   for (auto& f : c.frames) {
     std::array<double, kFrameDoubles> d;
     r.get_doubles(d.data(), d.size());
-    frame_fields(f, d, false);
+    if (!frame_fields(f, d, false)) r.corrupt("a frame's element count is out of range");
   }
   return c;
 }

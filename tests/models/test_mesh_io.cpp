@@ -137,6 +137,10 @@ TEST_CASE("import errors name the file") {
   // well-formed files without a single triangle
   const auto empty = dir.write("empty.stl", "solid x\nendsolid x\n");
   CHECK(import_error(empty) == empty.string() + ": the mesh has no triangles.");
+  // a PLY header without end_header (assimp 5.2 read it forever; fuzz_mesh)
+  const auto ply = dir.write("open_header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n0 0 0\n");
+  CHECK(import_error(ply) == ply.string() + ": is not a complete PLY file: its header has no "
+                                            "end_header line within the first 64 kB.");
   const auto lines = dir.write("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
   CHECK(import_error(lines) == lines.string() + ": the mesh has no triangles.");
   // an open tetrahedron (one face missing): 3 open edges

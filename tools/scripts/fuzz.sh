@@ -21,6 +21,8 @@ targets=()
 for h in "${harnesses[@]}"; do targets+=("fuzz_$h"); done
 nice -n 5 cmake --build build-fuzz -j"$(nproc)" --target "${targets[@]}"
 dir=build-fuzz/tests/fuzz
+# leaks inside third-party libraries, each with its evidence (tests/fuzz/lsan_suppressions.txt)
+export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan_suppressions.txt:print_suppressions=0"
 run_one() {
   local h=$1
   mkdir -p "$dir/corpus_$h"

@@ -16,5 +16,7 @@ nice -n 5 cmake --build build-sanitize -j"$(nproc)" --target "${targets[@]}"
 # detect_leaks: the suite must be leak-free too; the OpenMP runtime keeps its thread pool
 # until exit, which LeakSanitizer does not count as a leak
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
+# leaks inside third-party libraries, each with its evidence (tests/fuzz/lsan_suppressions.txt)
+export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan_suppressions.txt:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 nice -n 5 ctest --test-dir build-sanitize --output-on-failure -LE long -j"$(nproc)" "$@"

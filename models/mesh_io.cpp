@@ -99,6 +99,29 @@ void put_f32(std::string& out, double v) {
   out.append(b, 4);
 }
 
+// a face with no index or an index beyond its mesh's vertices (a truncated or inconsistent
+// file), as one sentence, or ""
+std::string find_bad_face(const aiScene& scene) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh* mesh = scene.mMeshes[m];
+    if (mesh == nullptr) return "the file holds an empty mesh record (truncated or inconsistent).";
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices == 0 || face.mIndices == nullptr) {
+        return "face " + std::to_string(f) + " has no vertex indices (is the file cut off?).";
+      }
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        if (face.mIndices[k] >= mesh->mNumVertices) {
+          return "face " + std::to_string(f) + " refers to vertex " +
+                 std::to_string(face.mIndices[k]) + " but the file holds " +
+                 std::to_string(mesh->mNumVertices) + " vertices (is the file cut off?).";
+        }
+      }
+    }
+  }
+  return "";
+}
+
 // assimp 5.2 (Debian 12) reads a PLY file whose header has no end_header line forever
 // (fuzz_mesh: tests/fuzz/regressions/mesh/hang_assimp_ply_no_end_header.bin did not return in
 // 120 s): a file named .ply or starting with the PLY magic must close its header within its
@@ -134,12 +157,18 @@ TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& op
   }
 
   check_ply_header(file);
-  // read with assimp: triangulate and flatten the node hierarchy
+  // read with assimp, check the faces, then triangulate and flatten the node hierarchy: the
+  // post-processing of assimp 5.2 (Debian 12) aborts the process (ai_assert in
+  // TriangulateProcess) on faces without indices, e.g. a PLY cut off before its face list
+  // (fuzz_mesh: tests/fuzz/regressions/mesh/abort_assimp_truncated_ply.bin)
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_COLORS);
-  const aiScene* scene =
-      importer.ReadFile(file.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                                           aiProcess_RemoveComponent | aiProcess_SortByPType);
+  const aiScene* scene = importer.ReadFile(file.string(), 0);
+  if (scene != nullptr) {
+    if (const std::string why = find_bad_face(*scene); !why.empty()) fail(file, why);
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                         aiProcess_RemoveComponent | aiProcess_SortByPType);
+  }
   if (scene == nullptr) {
     // assimp reports a well-formed file without faces as an error of its own
     const std::string why = importer.GetErrorString();

@@ -141,6 +141,12 @@ TEST_CASE("import errors name the file") {
   const auto ply = dir.write("open_header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n0 0 0\n");
   CHECK(import_error(ply) == ply.string() + ": is not a complete PLY file: its header has no "
                                             "end_header line within the first 64 kB.");
+  // a PLY cut off before its faces (assimp 5.2's triangulation aborted the process; fuzz_mesh)
+  const auto cut = dir.write("cut.ply",
+                             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face 4\nproperty "
+                             "list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 2 3\n");
+  CHECK(import_error(cut).find(cut.string() + ": ") == 0);
   const auto lines = dir.write("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
   CHECK(import_error(lines) == lines.string() + ": the mesh has no triangles.");
   // an open tetrahedron (one face missing): 3 open edges

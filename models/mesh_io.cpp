@@ -124,8 +124,9 @@ std::string find_bad_face(const aiScene& scene) {
 
 // assimp 5.2 (Debian 12) reads a PLY file whose header has no end_header line forever
 // (fuzz_mesh: tests/fuzz/regressions/mesh/hang_assimp_ply_no_end_header.bin did not return in
-// 120 s): a file named .ply or starting with the PLY magic must close its header within its
-// first 64 kB (real headers take a few hundred bytes) before assimp sees it
+// 120 s; hang_assimp_ply_cend_header.bin has "cend_header" instead): a file named .ply or
+// starting with the PLY magic must close its header with a line that is exactly end_header
+// within its first 64 kB (real headers take a few hundred bytes) before assimp sees it
 void check_ply_header(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::string head(65536, '\0');
@@ -134,7 +135,14 @@ void check_ply_header(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".ply" && head.rfind("ply", 0) != 0) return;
-  if (head.find("end_header") == std::string::npos) {
+  bool closed = false;
+  for (size_t at = head.find("end_header"); at != std::string::npos && !closed;
+       at = head.find("end_header", at + 1)) {
+    const size_t after = at + 10;
+    closed = at > 0 && head[at - 1] == '\n' &&
+             (after == head.size() || head[after] == '\n' || head[after] == '\r');
+  }
+  if (!closed) {
     fail(file, "is not a complete PLY file: its header has no end_header line within the first "
                "64 kB.");
   }

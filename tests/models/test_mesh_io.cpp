@@ -141,6 +141,9 @@ TEST_CASE("import errors name the file") {
   const auto ply = dir.write("open_header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n0 0 0\n");
   CHECK(import_error(ply) == ply.string() + ": is not a complete PLY file: its header has no "
                                             "end_header line within the first 64 kB.");
+  // end_header must be a line of its own ("cend_header" hung assimp as well)
+  const auto cend = dir.write("cend_header.ply", "ply\nformat ascii 1.0\ncend_header\n0 0 0\n");
+  CHECK(import_error(cend).find("is not a complete PLY file") != std::string::npos);
   // a PLY cut off before its faces (assimp 5.2's triangulation aborted the process; fuzz_mesh)
   const auto cut = dir.write("cut.ply",
                              "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"

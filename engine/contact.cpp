@@ -58,6 +58,23 @@ CarriageMotion find_carriage_motion(const State& state, const Data& data, int c)
 
 }  // namespace
 
+void finish_contact_summary(const Model& model, const std::array<double, 2>& weight,
+                            const std::array<std::array<double, kNumDof>, 2>& stiffness,
+                            ContactSummary& sum) {
+  for (int side = 0; side < 2; ++side) {
+    if (weight[side] > 0.0) sum.cop_T[side] /= weight[side];
+  }
+  const double area = sum.area[0] + sum.area[1];
+  sum.mean_pressure = area > 0.0 ? (sum.normal_force[0] + sum.normal_force[1]) / area : 0.0;
+  for (int c = 0; c < 2; ++c) {
+    for (int i = 0; i < kNumDof; ++i) {
+      const DofModel& dof = model.carriages[c].dofs[i];
+      if (dof.mode != DofMode::kFree && dof.mode != DofMode::kForce) continue;
+      sum.omega_max = std::max(sum.omega_max, std::sqrt(stiffness[c][i] / dof.mass));
+    }
+  }
+}
+
 void calc_contact(const Model& model, const State& state, Data& data) {
   update_contact_schedule(model, data);
   const InsertSurface& s = model.insert;
@@ -182,19 +199,9 @@ void calc_contact(const Model& model, const State& state, Data& data) {
     ++sum.elements_in_contact;
   }
   data.friction_damping = friction_damping;
-  for (int side = 0; side < 2; ++side) {
-    if (weight[side] > 0.0) sum.cop_T[side] /= weight[side];
-  }
-  const double area = sum.area[0] + sum.area[1];
-  sum.mean_pressure = area > 0.0 ? (sum.normal_force[0] + sum.normal_force[1]) / area : 0.0;
   sum.force_W = force;
-  for (int c = 0; c < 2; ++c) {
-    for (int i = 0; i < kNumDof; ++i) {
-      const DofModel& dof = model.carriages[c].dofs[i];
-      if (dof.mode != DofMode::kFree && dof.mode != DofMode::kForce) continue;
-      sum.omega_max = std::max(sum.omega_max, std::sqrt(stiffness[c][i] / dof.mass));
-    }
-  }
+  sum.tray_force_W = -force;
+  finish_contact_summary(model, weight, stiffness, sum);
   data.contact = sum;
 
   // generalized forces: +force on the femur, -force on the tibia

@@ -34,6 +34,14 @@ inline constexpr double kLipschitz = 0.7;
 // allocation-free
 void update_contact_schedule(const Model& model, Data& data);
 
+// completes a contact summary from its fixed-order sums (per side: normal force, area and the
+// pressure-weighted centre sum `weight`; per DOF: the tangent stiffness): centres of pressure,
+// mean pressure and the highest contact frequency over the free DOFs (stability monitor).
+// Shared by the rigid and the deformable insert.
+void finish_contact_summary(const Model& model, const std::array<double, 2>& weight,
+                            const std::array<std::array<double, kNumDof>, 2>& stiffness,
+                            ContactSummary& sum);
+
 // per-element pressures, slips and forces of the due elements; the summary over the elements
 // in contact; adds the contact forces into data.generalized of both carriages
 void calc_contact(const Model& model, const State& state, Data& data);

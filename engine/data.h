@@ -15,6 +15,9 @@ namespace kneesim::engine {
 // per-frame contact results, per condyle where it matters (index 0 medial, 1 lateral)
 struct ContactSummary {
   Eigen::Vector3d force_W = Eigen::Vector3d::Zero();   // total force on the femur [N]
+  Eigen::Vector3d tray_force_W = Eigen::Vector3d::Zero();  // force of the insert on the
+                                         // tibial carriage [N] (rigid insert: -force_W;
+                                         // deformable: the base nodes' reaction)
   std::array<double, 2> normal_force{};  // sum of normal forces per condyle [N]
   std::array<double, 2> area{};          // area of elements with p > 0 per condyle [m^2]
   std::array<Eigen::Vector3d, 2> cop_T{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
@@ -69,6 +72,7 @@ struct Data {
 
   ContactSummary contact;
   solid::SolidData insert_solid;  // deformable insert scratch (engine/solid/solid.h)
+  solid::SurfaceContactData insert_contact;  // its top nodes' pressures and forces
 };
 
 Data make_data(const Model& model);

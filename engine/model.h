@@ -19,6 +19,7 @@
 
 #include "engine/sdf.h"
 #include "engine/solid/solid.h"
+#include "engine/solid/surface_contact.h"
 #include "loads/iso14243/waveform.h"
 
 namespace kneesim::engine {
@@ -93,7 +94,12 @@ struct Model {
   std::vector<RestraintSpring> restraint;  // on the tibial carriage
   ContactModel contact;
   InsertSurface insert;
-  solid::SolidModel insert_solid;          // deformable insert (hex8); empty: rigid insert
+  solid::SolidModel insert_solid;          // deformable insert (hex8) in the T frame, its
+                                           // base nodes fixed; empty: rigid insert
+  solid::SurfaceContact insert_contact;    // its top-surface nodes against the femur
+  std::vector<int> insert_base_nodes;      // its nodes tied to the tibial carriage, ascending
+  std::vector<std::array<int, 4>> insert_top_faces;  // top quads (node ids), outputs
+  std::vector<int> insert_top_face_element;          // element under each top quad
   SignedDistanceField femur_sdf;           // femoral component, F frame, fine, narrow band
   SignedDistanceField femur_far_sdf;       // coarse and wide: how long far elements may sleep
   double femur_radius = 0.0;               // max |p_F| of the femoral surface [m] (0: unknown)

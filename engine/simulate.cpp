@@ -50,7 +50,9 @@ RunResult simulate(const Model& model, State& state, Data& data, const RunOption
       }
       if (next_map < options.map_pcts.size() &&
           local >= options.map_pcts[next_map] / 100.0 * model.period - 0.5 * model.dt) {
-        result.maps.push_back(data.pressure);
+        // rigid insert: per articular element; deformable: per top-surface node
+        result.maps.push_back(model.insert_solid.empty() ? data.pressure
+                                                         : data.insert_contact.pressure);
         ++next_map;
       }
       if (options.observer) options.observer(model, state, data);

@@ -37,7 +37,8 @@ struct RunResult {
   StepStatus status = StepStatus::kOk;
   double failed_at = 0.0;             // time of the failure [s]
   std::vector<Frame> frames;          // last cycle, one per 1 %
-  std::vector<std::vector<double>> maps;  // pressure per element [Pa], one per map_pcts
+  std::vector<std::vector<double>> maps;  // pressure [Pa] per articular element (rigid) or
+                                          // per top-surface node (deformable), per map_pcts
   long steps = 0;
   long evaluations = 0;               // contact element evaluations
   double max_stability_ratio = 0.0;   // max over steps of omega_max dt / limit (< 1 stable)

@@ -5,7 +5,10 @@
 
 #include "engine/contact.h"
 #include "engine/contact_law.h"
+#include "engine/insert_solid.h"
 #include "engine/kinematics.h"
+#include "engine/solid/solid_build.h"
+#include "engine/solid/solid_step.h"
 
 namespace kneesim::engine {
 namespace {
@@ -175,6 +178,8 @@ const char* to_string(StepStatus status) {
     case StepStatus::kRunawayPenetration:
       return "runaway penetration: the femoral component sank through the insert's elastic "
              "layer";
+    case StepStatus::kInvertedElement:
+      return "an element of the deformable insert inverted (its volume went through zero)";
   }
   return "unknown";
 }
@@ -185,8 +190,13 @@ void calc_forces(const Model& model, const State& state, Data& data) {
   for (auto& Q : data.generalized) Q.fill(0.0);
   // loads: gait waveforms at t (axial force, AP force, IE torque)
   apply_loads(model, state, data);
-  // contact search and forces: elastic foundation + regularized Coulomb friction
-  calc_contact(model, state, data);
+  if (model.insert_solid.empty()) {
+    // contact search and forces: elastic foundation + regularized Coulomb friction
+    calc_contact(model, state, data);
+  } else {
+    // deformable insert: element forces, its top nodes against the femur, the tray's load
+    calc_insert_solid_forces(model, state, data);
+  }
   // springs: spring-gap soft-tissue restraint on the tibial carriage
   apply_restraint(model, data);
 }
@@ -194,8 +204,15 @@ void calc_forces(const Model& model, const State& state, Data& data) {
 StepStatus step(const Model& model, State& state, Data& data) {
   // forces at x(n) with velocities v(n - 1/2)
   calc_forces(model, state, data);
-  // central-difference update: v(n + 1/2), x(n + 1), R(n + 1) on SO(3)
+  const bool solid = !model.insert_solid.empty();
+  // an inverted insert element: stop before anything moves (the state stays the last good one)
+  if (solid && data.insert_solid.status != solid::SolidStatus::kOk) {
+    return StepStatus::kInvertedElement;
+  }
+  // central-difference update: v(n + 1/2), x(n + 1), R(n + 1) on SO(3), and the insert's nodes
   for (int c = 0; c < 2; ++c) integrate_carriage(model, c, state, data);
+  if (solid) solid::update_solid_nodes(model.insert_solid, state.insert_solid, data.insert_solid,
+                                       model.dt);
   state.time += model.dt;
   ++state.step;
   // checks: NaN, runaway penetration
@@ -220,6 +237,7 @@ State make_initial_state(const Model& model) {
     state.carriages[c].R_WB = gimbal_rotation({q[3], q[4], q[5]});
     state.carriages[c].rate.fill(0.0);
   }
+  if (!model.insert_solid.empty()) state.insert_solid = solid::make_solid_state(model.insert_solid);
   return state;
 }
 
@@ -237,6 +255,10 @@ Data make_data(const Model& model) {
   data.friction_viscosity.assign(n, 0.0);
   for (int e = 0; e < n; ++e) {
     data.insert_radius = std::max(data.insert_radius, model.insert.centroid_T[e].norm());
+  }
+  if (!model.insert_solid.empty()) {
+    data.insert_solid = solid::make_solid_data(model.insert_solid);
+    data.insert_contact = solid::make_surface_contact_data(model.insert_contact);
   }
   return data;
 }

@@ -13,6 +13,7 @@ enum class StepStatus {
   kRunawayPenetration,
   kRunawayMotion,
   kUnstableStep,  // the contact stiffened beyond what the time step can integrate
+  kInvertedElement,  // an element of the deformable insert inverted (det F <= 0)
 };
 
 // omega_max * dt over the central-difference limit 2 (sqrt(1 + z^2) - z) with the current

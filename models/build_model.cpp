@@ -12,6 +12,7 @@
 #include "engine/fcl_adapter.h"
 #include "engine/kinematics.h"
 #include "engine/step.h"
+#include "models/deformable_insert.h"
 #include "models/distance_field_cache.h"
 #include "models/gait_assembly.h"
 #include "models/mesh_io.h"
@@ -498,8 +499,13 @@ BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
     const double load0 =
         ax_ch >= 0 ? -m.carriages[0].dofs[1].scale * m.gait.value(ax_ch, 0.0) : 0.0;
     engine::position_femur_statically(m, s, d, std::max(load0, 1.0));
-    m.carriages[0].dofs[1].initial = s.carriages[0].pivot_W.y() - m.carriages[0].pivot0_W.y();
+    // a deformable insert starts undeformed: the femur at first touch, the rigid overlap lifted
+    const double lift = c.insert_kind == "deformable" ? d.contact.max_penetration : 0.0;
+    m.carriages[0].dofs[1].initial =
+        s.carriages[0].pivot_W.y() + lift - m.carriages[0].pivot0_W.y();
   }
+  // the deformable insert (hex8 solid) replaces the elastic foundation in the step
+  if (c.insert_kind == "deformable") attach_deformable_insert(c, out);
   out.build_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

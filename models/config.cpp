@@ -260,6 +260,16 @@ Registry make_registry(Config& c) {
   r.number("gait.ap_force_shift_pct", c.ap_force_shift_pct, -50, 50);
   r.number("gait.ie_torque_shift_pct", c.ie_torque_shift_pct, -50, 50);
 
+  r.choice("insert", c.insert_kind, {"rigid", "deformable"});
+  r.number("deformable.element_size_mm", c.deformable_element_size_mm, 0.2, 10.0);
+  r.integer("deformable.layers", c.deformable_layers, 1, 20);
+  r.number("deformable.grading", c.deformable_grading, 0.05, 20.0);
+  r.number("deformable.dt_us", c.deformable_dt_us, 0.0, 1000.0);
+  r.number("deformable.damping_per_s", c.deformable_damping_per_s, 0.0, 1e5);
+  r.choice("deformable.material", c.deformable_material, {"elastoplastic", "elastic"});
+  r.number("deformable.hardening_MPa", c.deformable_hardening_MPa, 0.0, 1e5);
+  r.number("deformable.yield_cap_MPa", c.deformable_yield_cap_MPa, 0.0, 1e4);
+
   r.choice("solver.integrator", c.integrator, {"central_difference", "cvode"});
   r.number("solver.dt_safety", c.dt_safety, 0.05, 1.0);
   r.integer("solver.threads", c.threads, 1, 256);

@@ -122,6 +122,19 @@ struct Config {
   // the kinematics diagnosis, run forward)
   double ap_force_shift_pct = 0.0, ie_torque_shift_pct = 0.0;
 
+  // insert = "rigid" (elastic foundation on the articular elements) | "deformable" (hex8
+  // solid meshed from the insert, engine/insert_solid.h)
+  std::string insert_kind = "rigid";
+  // [deformable]: the deformable insert's mesh, time step and material model
+  double deformable_element_size_mm = 1.0;  // grid spacing over the footprint [mm]
+  int deformable_layers = 4;                // elements through the thickness
+  double deformable_grading = 0.5;          // top / bottom layer thickness [-]
+  double deformable_dt_us = 20.0;           // time step reached by mass scaling [us]; 0: none
+  double deformable_damping_per_s = 1000.0; // mass-proportional damping [1/s]
+  std::string deformable_material = "elastoplastic";  // "elastoplastic" (J2) | "elastic"
+  double deformable_hardening_MPa = 50.0;   // isotropic hardening slope H [MPa]
+  double deformable_yield_cap_MPa = 33.0;   // yield stress ceiling [MPa] (UHMWPE, physics.md)
+
   // [solver]
   std::string integrator = "central_difference";  // "central_difference" | "cvode"
   double dt_safety = 0.8;                  // fraction of the estimated stability limit [-]

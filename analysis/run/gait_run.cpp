@@ -4,7 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <optional>
 
+#include "analysis/run/solid_outputs.h"
 #include "engine/io/json_out.h"
 #include "engine/io/output_folder.h"
 #include "engine/io/plot.h"
@@ -23,7 +26,8 @@ void clear_outputs(const std::filesystem::path& dir) {
     const std::string name = e.path().filename().string();
     if (name == "kinematics.csv" || name == "summary.json" || name == "kinematics.png" ||
         name == "kinematics.partial.csv" || name == "measured_kinematics.csv" ||
-        name == "summary.failed.json" || name.rfind("pressure_", 0) == 0) {
+        name == "summary.failed.json" || name.rfind("pressure_", 0) == 0 ||
+        name.rfind("insert_stress", 0) == 0) {
       fs::remove(e.path());
     }
   }
@@ -76,9 +80,14 @@ models::Config load_run_config(const std::string& path, const std::vector<std::s
   return models::load_config(path, overrides);
 }
 
-engine::RunResult simulate_gait(models::BuiltModel& built, const engine::RunOptions& options) {
+engine::RunResult simulate_gait(models::BuiltModel& built, const engine::RunOptions& options,
+                                engine::State* final_state,
+                                const std::function<void()>& before_attempt) {
   engine::State state = engine::make_initial_state(built.model);
-  return engine::simulate_with_retry(built.model, state, options, built.dt_safety);
+  engine::RunResult r = engine::simulate_with_retry(built.model, state, options, built.dt_safety,
+                                                    4, before_attempt);
+  if (final_state) *final_state = std::move(state);
+  return r;
 }
 
 GaitRunReport run_gait_job(const GaitRunJob& job) {
@@ -99,9 +108,20 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   std::sort(options.map_pcts.begin(), options.map_pcts.end());
   io::ProgressBar bar("simulating");
   if (!job.quiet) options.progress = [&bar](double f) { bar.update(f); };
+  // deformable insert: stress maxima and energies over the last cycle (reset by a retry)
+  const bool solid = !built.model.insert_solid.empty();
+  std::optional<SolidCycleTracker> tracker;
+  std::function<void()> reset_tracker;
+  if (solid) {
+    reset_tracker = [&tracker, &built] { tracker.emplace(built.model); };
+    reset_tracker();
+    options.observer = [&tracker](const engine::Model&, const engine::State&,
+                                  const engine::Data& d) { tracker->observe(d); };
+  }
   const auto t0 = std::chrono::steady_clock::now();
   const double dt_estimated = built.model.dt;
-  const engine::RunResult result = simulate_gait(built, options);
+  engine::State state;
+  const engine::RunResult result = simulate_gait(built, options, &state, reset_tracker);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   bar.finish();
 
@@ -116,17 +136,34 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   if (result.step_retries > 0) summary["dt_estimated_s"] = dt_estimated;
   summary["element_evaluations_per_step"] =
       static_cast<double>(result.evaluations) / std::max(1L, result.steps);
+  // the solid's fields at the state the run ended in (its stresses, an inverted element)
+  engine::Data data;
+  if (solid) {
+    data = engine::make_data(built.model);
+    engine::calc_forces(built.model, state, data);
+    summary.update(describe_solid_cycle(built.model, state, *tracker));
+  }
   if (result.status != engine::StepStatus::kOk) {
     // keep what was complete, under names that cannot be mistaken for a finished run
     io::write_csv(out / "kinematics.partial.csv", table);
     summary["status"] = "failed";
     summary["failure"] = engine::to_string(result.status);
     summary["failed_at_s"] = result.failed_at;
+    std::string what = engine::to_string(result.status);
+    std::string kept = (out / "kinematics.partial.csv").string();
+    if (result.status == engine::StepStatus::kInvertedElement) {
+      // the state is the one the inversion was found in: the step stopped before moving it
+      const int element = data.insert_solid.inverted_element;
+      summary["inverted_element"] = element;
+      what = "element " + std::to_string(element) + " of the deformable insert inverted";
+      write_solid_stress_vtu(out / "insert_stress.partial.vtu", built.model, state, data,
+                             *tracker);
+      kept += " and " + (out / "insert_stress.partial.vtu").string();
+    }
     io::write_json(out / "summary.failed.json", summary);
     throw std::runtime_error(std::string("the simulation stopped at t = ") +
-                             std::to_string(result.failed_at) + " s: " +
-                             engine::to_string(result.status) + "; the frames completed so far "
-                             "are in " + (out / "kinematics.partial.csv").string());
+                             std::to_string(result.failed_at) + " s: " + what +
+                             "; the frames completed so far are in " + kept);
   }
   // a finished run's outputs are finite numbers: a NaN that slipped past the engine's state
   // check (e.g. in a contact figure) makes the run a failure, not a complete result
@@ -141,8 +178,13 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   for (size_t i = 0; i < result.maps.size(); ++i) {
     char name[64];
     std::snprintf(name, sizeof name, "pressure_%03.0fpct.vtp", options.map_pcts[i]);
-    write_pressure_map(out / name, built.model.insert, result.maps[i]);
+    if (solid) {
+      write_solid_pressure_map(out / name, built.model, result.maps[i], state, *tracker);
+    } else {
+      write_pressure_map(out / name, built.model.insert, result.maps[i]);
+    }
   }
+  if (solid) write_solid_stress_vtu(out / "insert_stress.vtu", built.model, state, data, *tracker);
   GaitRunReport report;
   report.figures = calc_cycle_figures(result.frames);
   report.seconds = seconds;

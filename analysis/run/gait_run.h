@@ -42,8 +42,12 @@ io::Table read_measured_kinematics(const models::Config& config);
 
 // the gait cycles of a run from the Model's initial state, with engine::simulate_with_retry's
 // step retry at the stability limit (built.model.dt keeps the step that worked; the result
-// counts the retries); shared by `kneesim run`, the studies and the diagnoses
-engine::RunResult simulate_gait(models::BuiltModel& built, const engine::RunOptions& options);
+// counts the retries); shared by `kneesim run`, the studies and the diagnoses. `final_state`
+// (may be null) receives the state the run ended in; `before_attempt` resets what the observer
+// accumulates before each attempt
+engine::RunResult simulate_gait(models::BuiltModel& built, const engine::RunOptions& options,
+                                engine::State* final_state = nullptr,
+                                const std::function<void()>& before_attempt = {});
 
 // the first non-finite cell of a table ("<column> = nan in row <r> of kinematics.csv"), or ""
 std::string find_non_finite(const io::Table& table);

@@ -190,6 +190,12 @@ static void check_output_size(const WearJob& j, const engine::InsertSurface& s) 
 void check_wear_job(const WearJob& j) {
   constexpr long kMaxUpdates = 10000;
   make_wear_law(j);
+  if (j.config.insert_kind != "rigid") {
+    // the wear accumulation reads the rigid insert's element pressures (issue 11 item 4)
+    throw InputError("insert = \"" + j.config.insert_kind + "\" is not allowed for wear runs "
+                     "yet (wear on the deformable insert is not implemented); allowed: "
+                     "\"rigid\"");
+  }
   if (j.cycles <= 0) {
     throw InputError("--cycles = " + std::to_string(j.cycles) + " is not allowed (a positive "
                      "number of gait cycles)");

@@ -6,11 +6,10 @@
 #include "engine/io/atomic_file.h"
 
 namespace kneesim::io {
-namespace {
 
-void append_array(std::string& out, const VtpArray& a, size_t expected, const char* where) {
+void append_vtk_array(std::string& out, const VtpArray& a, size_t expected, const char* where) {
   if (a.values.size() != expected) {
-    throw std::logic_error(std::string("vtp ") + where + " array " + a.name + " has " +
+    throw std::logic_error(std::string("vtk ") + where + " array " + a.name + " has " +
                            std::to_string(a.values.size()) + " values, expected " +
                            std::to_string(expected));
   }
@@ -22,8 +21,6 @@ void append_array(std::string& out, const VtpArray& a, size_t expected, const ch
   }
   out += "\n</DataArray>\n";
 }
-
-}  // namespace
 
 std::string format_vtp(const VtpSurface& s) {
   std::string out;
@@ -52,12 +49,12 @@ std::string format_vtp(const VtpSurface& s) {
   out += "</DataArray>\n</Polys>\n";
   if (!s.point_data.empty()) {
     out += "<PointData>\n";
-    for (const auto& a : s.point_data) append_array(out, a, s.points_mm.size(), "point");
+    for (const auto& a : s.point_data) append_vtk_array(out, a, s.points_mm.size(), "point");
     out += "</PointData>\n";
   }
   if (!s.cell_data.empty()) {
     out += "<CellData>\n";
-    for (const auto& a : s.cell_data) append_array(out, a, s.triangles.size(), "cell");
+    for (const auto& a : s.cell_data) append_vtk_array(out, a, s.triangles.size(), "cell");
     out += "</CellData>\n";
   }
   out += "</Piece>\n</PolyData>\n</VTKFile>\n";

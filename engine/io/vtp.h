@@ -21,6 +21,10 @@ struct VtpSurface {
   std::vector<VtpArray> cell_data;
 };
 
+// appends one ASCII DataArray; throws std::logic_error when it does not hold `expected` values
+void append_vtk_array(std::string& out, const VtpArray& array, size_t expected,
+                      const char* where);
+
 // the file's text (the size of a run's outputs is estimated from it before the run)
 std::string format_vtp(const VtpSurface& surface);
 

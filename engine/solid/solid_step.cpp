@@ -85,6 +85,11 @@ SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& da
   // stresses and internal forces at x(n)
   calc_solid_forces(model, state, data);
   if (data.status != SolidStatus::kOk) return data.status;
+  update_solid_nodes(model, state, data, dt);
+  return SolidStatus::kOk;
+}
+
+void update_solid_nodes(const SolidModel& model, SolidState& state, SolidData& data, double dt) {
   // central-difference update of the nodes; kinetic energy at t(n) from the mean of the
   // half-step velocities
   const int n_nodes = model.num_nodes(), n_el = model.num_elements();
@@ -121,7 +126,6 @@ SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& da
   double kinetic = 0.0;
   for (int n = 0; n < n_nodes; ++n) kinetic += data.nodal_kinetic_energy[n];
   data.kinetic_energy = kinetic;
-  return SolidStatus::kOk;
 }
 
 }  // namespace kneesim::engine::solid

@@ -33,4 +33,10 @@ void calc_solid_forces(const SolidModel& model, const SolidState& state, SolidDa
 // kInverted without moving anything when an element has inverted.
 SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& data, double dt);
 
+// the update half of step_solid: the central-difference update of the nodes with the forces
+// already in data (calc_solid_forces at the current positions, external and friction terms),
+// and the plastic state committed. For owners that need the internal forces before the update
+// (the knee step takes the base reaction from them).
+void update_solid_nodes(const SolidModel& model, SolidState& state, SolidData& data, double dt);
+
 }  // namespace kneesim::engine::solid

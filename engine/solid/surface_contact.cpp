@@ -42,6 +42,8 @@ SurfaceContactData make_surface_contact_data(const SurfaceContact& contact) {
   const int n = contact.size();
   d.pressure.assign(n, 0.0);
   d.force.assign(n, Eigen::Vector3d::Zero());
+  d.friction_force.assign(n, Eigen::Vector3d::Zero());
+  d.body_velocity.assign(n, Eigen::Vector3d::Zero());
   d.slip_speed.assign(n, 0.0);
   return d;
 }

@@ -46,6 +46,9 @@ struct RigidSample {
 struct SurfaceContactData {
   std::vector<double> pressure;            // [Pa]
   std::vector<Eigen::Vector3d> force;      // normal force on the node [N]
+  std::vector<Eigen::Vector3d> friction_force;  // friction on the node, where the owner
+                                                // computes it as a force (knee step) [N]
+  std::vector<Eigen::Vector3d> body_velocity;   // of the rigid body at the node [m/s]
   std::vector<double> slip_speed;          // tangential slip speed [m/s]
   Eigen::Vector3d total_force = Eigen::Vector3d::Zero();  // normal forces on the solid [N]
   double peak_pressure = 0.0;              // [Pa]

@@ -199,3 +199,62 @@ TEST_CASE("a run that fails numerically leaves no complete-looking result") {
   CHECK_FALSE(fs::exists(out / "summary.failed.json"));
   CHECK_FALSE(fs::exists(out / "kinematics.partial.csv"));
 }
+
+TEST_CASE("kneesim run with the deformable insert writes the rigid outputs plus stresses") {
+  // smoke test: a coarse insert (3 mm elements, 3 layers) over one 0.2 s cycle; the same files
+  // as the rigid path plus insert_stress.vtu, the pressure maps with node pressures and the
+  // element fields, and the summary's stress, plastic-strain and energy-ratio keys
+  TempDir tmp;
+  const fs::path out = tmp.path / "result";
+  const Result r = run_kneesim(
+      {"run", "--out", out.string(), "--quiet", "--cycles", "1", "--set", "insert=deformable",
+       "--set", "deformable.element_size_mm=3", "--set", "deformable.layers=3", "--set",
+       "implant.edge_length_mm=2", "--set", "gait.period_s=0.2", "--set", "solver.threads=2"},
+      tmp.path);
+  INFO("stderr: " << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(fs::exists(out / "kinematics.csv"));
+  CHECK(fs::exists(out / "kinematics.png"));
+  const auto summary = nlohmann::json::parse(slurp(out / "summary.json"));
+  for (const char* k : {"ap_rom_mm", "ie_rom_mm", "peak_pressure_MPa", "mean_contact_area_mm2",
+                        "von_mises_max_surface_MPa", "von_mises_max_subsurface_MPa",
+                        "plastic_strain_max_surface", "plastic_strain_max_subsurface",
+                        "kinetic_to_internal_max", "solid_elements", "solid_added_mass_kg"}) {
+    REQUIRE_MESSAGE(summary.contains(k), "summary.json lacks " << k);
+    CHECK(summary[k].is_number());
+  }
+  CHECK(summary["peak_pressure_MPa"].get<double>() > 0.0);
+  CHECK(summary["von_mises_max_subsurface_MPa"].get<double>() > 0.0);
+  const std::string vtu = slurp(out / "insert_stress.vtu");
+  CHECK(vtu.find("UnstructuredGrid") != std::string::npos);
+  CHECK(vtu.find("von_mises_max_MPa") != std::string::npos);
+  CHECK(vtu.find("plastic_strain") != std::string::npos);
+  const std::string map = slurp(out / "pressure_013pct.vtp");
+  CHECK(map.find("pressure_MPa") != std::string::npos);
+  CHECK(map.find("von_mises_max_MPa") != std::string::npos);
+}
+
+TEST_CASE("an inverting element stops a deformable run with exit 1, naming it and the time") {
+  // a 2 MPa insert cannot carry the gait load: a top element is crushed through zero volume
+  // within the first centiseconds; only the partial files remain
+  TempDir tmp;
+  const fs::path out = tmp.path / "out";
+  const Result r = run_kneesim(
+      {"run", "--out", out.string(), "--quiet", "--cycles", "1", "--set", "insert=deformable",
+       "--set", "deformable.element_size_mm=3", "--set", "deformable.layers=3", "--set",
+       "implant.edge_length_mm=2", "--set", "gait.period_s=0.2", "--set",
+       "material.elastic_modulus_MPa=2"},
+      tmp.path);
+  INFO("stderr: " << r.err);
+  CHECK(r.exit_code == 1);
+  CHECK(count_lines(r.err) == 1);
+  CHECK(r.err.find("element ") != std::string::npos);
+  CHECK(r.err.find("inverted") != std::string::npos);
+  CHECK(r.err.find("t = ") != std::string::npos);
+  CHECK_FALSE(fs::exists(out / "summary.json"));
+  CHECK_FALSE(fs::exists(out / "insert_stress.vtu"));
+  CHECK(fs::exists(out / "insert_stress.partial.vtu"));
+  CHECK(fs::exists(out / "kinematics.partial.csv"));
+  const auto failed = nlohmann::json::parse(slurp(out / "summary.failed.json"));
+  CHECK(failed["inverted_element"].get<int>() >= 0);
+}

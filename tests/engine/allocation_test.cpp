@@ -142,3 +142,20 @@ TEST_CASE("step_solid() does not allocate") {
   CHECK(failures == 0);
   CHECK(allocations == 0);
 }
+
+TEST_CASE("step() with the deformable insert does not allocate") {
+  // 3 mm elements on 2 threads: 200 warm-up steps (first touch, OpenMP team), 1000 counted
+  const models::BuiltModel built = models::build_model(test::default_config(
+      {"insert=deformable", "deformable.element_size_mm=3", "deformable.layers=3",
+       "implant.edge_length_mm=2", "solver.threads=2"}));
+  const engine::Model& model = built.model;
+  engine::State state = engine::make_initial_state(model);
+  engine::Data data = engine::make_data(model);
+  for (int i = 0; i < 200; ++i) REQUIRE(engine::step(model, state, data) == engine::StepStatus::kOk);
+  const long before = g_allocations.load();
+  int failures = 0;
+  for (int i = 0; i < 1000; ++i) failures += engine::step(model, state, data) != engine::StepStatus::kOk;
+  const long allocations = g_allocations.load() - before;
+  CHECK(failures == 0);
+  CHECK(allocations == 0);
+}

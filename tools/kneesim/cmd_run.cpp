@@ -36,6 +36,13 @@ void run(const RunArgs& a) {
                    "%.3g s), %d cycle(s)\n",
                    model.insert.size(), model.dt, std::lround(model.period / model.dt),
                    model.dt_critical, cycles);
+      if (!model.insert_solid.empty()) {
+        std::fprintf(stderr,
+                     "kneesim run: deformable insert, %d hex8 elements, %d nodes, mass scaled "
+                     "from %.3g kg by %.3g kg\n",
+                     model.insert_solid.num_elements(), model.insert_solid.num_nodes(),
+                     model.insert_solid.physical_mass, model.insert_solid.added_mass);
+      }
     };
   }
   const run::GaitRunReport r = run::run_gait_job(job);
@@ -59,7 +66,12 @@ void add_run_command(CLI::App& app) {
       "Simulate gait cycles of the force-controlled rig (default: built-in generic TKR, "
       "stanmore rig, ISO 14243-1-shaped gait, UHMWPE insert). Writes DIR/kinematics.csv (one "
       "row per 1 % of the last cycle), DIR/summary.json, DIR/pressure_<pct>pct.vtp (ParaView) "
-      "and DIR/kinematics.png.");
+      "and DIR/kinematics.png. With --set insert=deformable the insert is a hex8 solid "
+      "(docs/deformable.md): the pressure maps carry node pressures and element stresses, "
+      "DIR/insert_stress.vtu the von Mises maximum over the cycle and the plastic strain per "
+      "element, summary.json the surface/subsurface maxima and the kinetic/internal energy "
+      "ratio; an inverted element stops the run (exit 1) keeping "
+      "DIR/insert_stress.partial.vtu.");
   cmd->add_option("config", args->config, "TOML config file (every key defaulted)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();

@@ -1,0 +1,115 @@
+#include "analysis/run/solid_outputs.h"
+
+#include <algorithm>
+
+#include "engine/io/vtu.h"
+
+namespace kneesim::run {
+
+SolidCycleTracker::SolidCycleTracker(const engine::Model& model)
+    : von_mises_max(model.insert_solid.num_elements(), 0.0) {
+  const long steps = std::lround(model.period / model.dt) + 2;
+  kinetic.reserve(steps);
+  internal.reserve(steps);
+}
+
+void SolidCycleTracker::observe(const engine::Data& data) {
+  const engine::solid::SolidData& sd = data.insert_solid;
+  const int n = static_cast<int>(von_mises_max.size());
+  for (int e = 0; e < n; ++e) von_mises_max[e] = std::max(von_mises_max[e], sd.von_mises[e]);
+  kinetic.push_back(sd.kinetic_energy);
+  internal.push_back(sd.total_strain_energy + sd.total_plastic_work);
+}
+
+nlohmann::json describe_solid_cycle(const engine::Model& model, const engine::State& state,
+                                    const SolidCycleTracker& tracker) {
+  const engine::solid::SolidModel& solid = model.insert_solid;
+  const int n_el = solid.num_elements();
+  std::vector<unsigned char> surface(n_el, 0);
+  for (int e : model.insert_top_face_element) surface[e] = 1;
+  double vm_surface = 0.0, vm_sub = 0.0, ep_surface = 0.0, ep_sub = 0.0;
+  for (int e = 0; e < n_el; ++e) {
+    const double vm = tracker.von_mises_max[e], ep = state.insert_solid.alpha[e];
+    if (surface[e]) {
+      vm_surface = std::max(vm_surface, vm);
+      ep_surface = std::max(ep_surface, ep);
+    } else {
+      vm_sub = std::max(vm_sub, vm);
+      ep_sub = std::max(ep_sub, ep);
+    }
+  }
+  // energy ratio: the largest kinetic/internal ratio over the steps where the internal energy
+  // is at least a tenth of the cycle's largest (swing, nearly unloaded, is left out), and the
+  // ratio of the cycle sums
+  double internal_max = 0.0, kinetic_sum = 0.0, internal_sum = 0.0, ratio_max = 0.0;
+  for (double u : tracker.internal) internal_max = std::max(internal_max, u);
+  for (size_t i = 0; i < tracker.internal.size(); ++i) {
+    kinetic_sum += tracker.kinetic[i];
+    internal_sum += tracker.internal[i];
+    if (tracker.internal[i] >= 0.1 * internal_max && tracker.internal[i] > 0.0) {
+      ratio_max = std::max(ratio_max, tracker.kinetic[i] / tracker.internal[i]);
+    }
+  }
+  nlohmann::json j;
+  j["insert"] = "deformable";
+  j["solid_elements"] = n_el;
+  j["solid_nodes"] = solid.num_nodes();
+  j["solid_surface_nodes"] = model.insert_contact.size();
+  j["solid_dt_critical_s"] = solid.dt_critical;
+  j["solid_mass_kg"] = solid.physical_mass;
+  j["solid_added_mass_kg"] = solid.added_mass;
+  j["solid_damping_per_s"] = solid.damping_alpha;
+  j["von_mises_max_surface_MPa"] = vm_surface * 1e-6;
+  j["von_mises_max_subsurface_MPa"] = vm_sub * 1e-6;
+  j["plastic_strain_max_surface"] = ep_surface;
+  j["plastic_strain_max_subsurface"] = ep_sub;
+  j["kinetic_to_internal_max"] = ratio_max;
+  j["kinetic_to_internal_cycle"] = internal_sum > 0.0 ? kinetic_sum / internal_sum : 0.0;
+  return j;
+}
+
+void write_solid_pressure_map(const std::filesystem::path& path, const engine::Model& model,
+                              const std::vector<double>& node_pressure_Pa,
+                              const engine::State& state, const SolidCycleTracker& tracker) {
+  const engine::solid::SolidModel& solid = model.insert_solid;
+  io::VtpSurface s;
+  for (const auto& x : solid.reference_positions) s.points_mm.push_back(x * 1e3);
+  io::VtpArray p{"pressure_MPa", std::vector<double>(solid.num_nodes(), 0.0)};
+  for (int i = 0; i < model.insert_contact.size(); ++i) {
+    p.values[model.insert_contact.nodes[i]] = node_pressure_Pa[i] * 1e-6;
+  }
+  s.point_data.push_back(std::move(p));
+  io::VtpArray vm{"von_mises_max_MPa", {}}, ep{"plastic_strain", {}};
+  for (size_t f = 0; f < model.insert_top_faces.size(); ++f) {
+    const auto& q = model.insert_top_faces[f];
+    s.triangles.emplace_back(q[0], q[1], q[2]);
+    s.triangles.emplace_back(q[0], q[2], q[3]);
+    const int e = model.insert_top_face_element[f];
+    for (int k = 0; k < 2; ++k) {
+      vm.values.push_back(tracker.von_mises_max[e] * 1e-6);
+      ep.values.push_back(state.insert_solid.alpha[e]);
+    }
+  }
+  s.cell_data.push_back(std::move(vm));
+  s.cell_data.push_back(std::move(ep));
+  io::write_vtp(path, s);
+}
+
+void write_solid_stress_vtu(const std::filesystem::path& path, const engine::Model& model,
+                            const engine::State& state, const engine::Data& data,
+                            const SolidCycleTracker& tracker) {
+  const engine::solid::SolidModel& solid = model.insert_solid;
+  io::VtuHexMesh m;
+  for (const auto& x : state.insert_solid.position) m.points_mm.push_back(x * 1e3);
+  m.hexes = solid.elements;
+  io::VtpArray vm_max{"von_mises_max_MPa", {}}, vm{"von_mises_MPa", {}}, ep{"plastic_strain", {}};
+  for (int e = 0; e < solid.num_elements(); ++e) {
+    vm_max.values.push_back(tracker.von_mises_max[e] * 1e-6);
+    vm.values.push_back(data.insert_solid.von_mises[e] * 1e-6);
+    ep.values.push_back(state.insert_solid.alpha[e]);
+  }
+  m.cell_data = {std::move(vm_max), std::move(vm), std::move(ep)};
+  io::write_vtu(path, m);
+}
+
+}  // namespace kneesim::run

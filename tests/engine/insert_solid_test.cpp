@@ -1,0 +1,141 @@
+// The deformable insert in the knee step (engine/insert_solid.h, models/deformable_insert.h):
+// the model it builds, the load balance between the femur, the solid and the tray, determinism
+// across thread counts, the stop on an inverted element, and the config's bad-input errors.
+// References: invariants (base nodes fixed, forces balanced up to the insert's inertia, equal
+// hashes), and the error contract (one sentence naming the key, value and allowed range).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "engine/errors.h"
+#include "engine/step.h"
+#include "engine_fixtures.h"
+
+using namespace kneesim;
+
+namespace {
+
+// a coarse deformable insert (3 mm elements, 3 layers) on the default implant at 2 mm edges
+models::Config coarse_deformable(std::vector<std::string> extra = {}) {
+  std::vector<std::string> sets = {"insert=deformable", "deformable.element_size_mm=3",
+                                   "deformable.layers=3", "implant.edge_length_mm=2"};
+  sets.insert(sets.end(), extra.begin(), extra.end());
+  return test::default_config(sets);
+}
+
+}  // namespace
+
+TEST_CASE("deformable insert: the model ties the base to the tray and starts at first touch") {
+  const models::BuiltModel built = models::build_model(coarse_deformable());
+  const engine::Model& m = built.model;
+  const engine::solid::SolidModel& s = m.insert_solid;
+  REQUIRE(!s.empty());
+  // every base node lies on the base plane and is fixed in all three directions
+  REQUIRE(!m.insert_base_nodes.empty());
+  for (int b : m.insert_base_nodes) {
+    CHECK(std::abs(s.reference_positions[b].y()) < 1e-12);
+    CHECK(s.constraint[b] == engine::solid::kFixAll);
+  }
+  // the contact nodes are the top nodes, none of them fixed
+  CHECK(m.insert_contact.size() > 0);
+  for (int node : m.insert_contact.nodes) CHECK(s.constraint[node] == 0);
+  // one global step within the solid's limit and the rigid rig's, a whole number per cycle
+  CHECK(m.dt <= built.dt_safety * s.dt_critical * (1.0 + 1e-12));
+  CHECK(m.dt <= built.stable_step.dt * (1.0 + 1e-12));
+  CHECK(std::abs(m.period / m.dt - std::round(m.period / m.dt)) < 1e-6);
+  // mass scaling reached the configured 20 us and is reported
+  CHECK(m.dt == doctest::Approx(20e-6).epsilon(1e-3));
+  CHECK(s.added_mass > 0.0);
+  // the femur starts at first touch: no penetration deeper than a micrometre
+  engine::State state = engine::make_initial_state(m);
+  engine::Data data = engine::make_data(m);
+  engine::calc_forces(m, state, data);
+  CHECK(data.contact.max_penetration < 1e-6);
+}
+
+TEST_CASE("deformable insert: femur, solid and tray balance the applied load") {
+  // 0.06 s of the gait (the axial load from 168 N to 1890 N at 3 % and 1530 N at 6 %):
+  // averaged over the last 0.02 s, the tray carries the femur's contact force up to the
+  // insert's own inertia and damping (reference: momentum balance; the scaled insert's kinetic
+  // energy is small), and the contact force the applied load up to the femur's acceleration
+  const models::BuiltModel built = models::build_model(coarse_deformable());
+  const engine::Model& m = built.model;
+  engine::State state = engine::make_initial_state(m);
+  engine::Data data = engine::make_data(m);
+  const int steps = static_cast<int>(std::lround(0.06 / m.dt));
+  const int window = static_cast<int>(std::lround(0.02 / m.dt));
+  double femur = 0.0, tray = 0.0, applied = 0.0;
+  for (int i = 0; i < steps; ++i) {
+    REQUIRE(engine::step(m, state, data) == engine::StepStatus::kOk);
+    if (i >= steps - window) {
+      femur += data.contact.force_W.y() / window;
+      tray += data.contact.tray_force_W.y() / window;
+      applied += -data.applied[0][1] / window;
+    }
+  }
+  MESSAGE("mean over 0.04-0.06 s: applied " << applied << " N, contact on the femur " << femur
+          << " N, tray " << tray << " N");
+  CHECK(applied > 1000.0);
+  CHECK(femur == doctest::Approx(applied).epsilon(0.05));
+  CHECK(-tray == doctest::Approx(femur).epsilon(0.05));
+}
+
+TEST_CASE("deformable insert: bit-identical on 1 and 2 threads") {
+  // reference: engine::hash_state over every bit of the State (carriages and solid nodes)
+  auto run = [](int threads) {
+    const models::BuiltModel built = models::build_model(
+        coarse_deformable({"solver.threads=" + std::to_string(threads)}));
+    engine::State state = engine::make_initial_state(built.model);
+    engine::Data data = engine::make_data(built.model);
+    for (int i = 0; i < 1500; ++i) {
+      REQUIRE(engine::step(built.model, state, data) == engine::StepStatus::kOk);
+    }
+    CHECK(data.contact.elements_in_contact > 0);
+    return engine::hash_state(state);
+  };
+  CHECK(run(1) == run(2));
+}
+
+TEST_CASE("deformable insert: an inverted element stops the step before anything moves") {
+  const models::BuiltModel built = models::build_model(coarse_deformable());
+  const engine::Model& m = built.model;
+  engine::State state = engine::make_initial_state(m);
+  engine::Data data = engine::make_data(m);
+  for (int i = 0; i < 10; ++i) REQUIRE(engine::step(m, state, data) == engine::StepStatus::kOk);
+  // push the top nodes of one column below its base: every element of the column inverts
+  const int element = m.insert_top_face_element[m.insert_top_face_element.size() / 2];
+  for (int a : m.insert_solid.elements[element]) {
+    if (m.insert_solid.constraint[a] == 0) state.insert_solid.position[a].y() = -1e-3;
+  }
+  const uint64_t before = engine::hash_state(state);
+  CHECK(engine::step(m, state, data) == engine::StepStatus::kInvertedElement);
+  CHECK(engine::hash_state(state) == before);
+  CHECK(data.insert_solid.inverted_element >= 0);
+  CHECK(data.insert_solid.inverted_element <= element);
+  CHECK(std::string(engine::to_string(engine::StepStatus::kInvertedElement)).find("inverted") !=
+        std::string::npos);
+}
+
+TEST_CASE("deformable insert: bad config values are refused with one sentence") {
+  auto message = [](std::vector<std::string> sets) -> std::string {
+    try {
+      models::build_model(coarse_deformable(sets));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  // each names the key, the value and the allowed range
+  const std::string layers = message({"deformable.layers=0"});
+  CHECK(layers.find("deformable.layers") != std::string::npos);
+  CHECK(layers.find("[1, 20]") != std::string::npos);
+  const std::string size = message({"deformable.element_size_mm=0"});
+  CHECK(size.find("deformable.element_size_mm") != std::string::npos);
+  const std::string kind = message({"insert=solid"});
+  CHECK(kind.find("\"deformable\"") != std::string::npos);
+  const std::string poisson = message({"material.poisson=0.5"});
+  CHECK(poisson.find("material.poisson") != std::string::npos);
+  const std::string cvode = message({"solver.integrator=cvode"});
+  CHECK(cvode.find("central_difference") != std::string::npos);
+}

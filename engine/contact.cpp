@@ -1,7 +1,13 @@
 #include "engine/contact.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#include <xmmintrin.h>
+#endif
 
 #include "engine/contact_law.h"
 #include "engine/kinematics.h"
@@ -26,18 +32,42 @@ void update_contact_schedule(const Model& model, Data& data) {
     data.motion += delta.translation().norm() + angle * data.insert_radius;
   }
   data.X_FT_prev = X_FT;
-  // branch-free compaction: most elements sleep, and which ones is not predictable
+  // the due list in ascending order from bit masks of 64 elements: most elements sleep, and
+  // which ones is not predictable, so the comparisons run four at a time without a branch and
+  // only the due elements' bits are visited
   const int n = model.insert.size();
-  data.due.resize(n);  // capacity reserved
-  int* due = data.due.data();
   const double* recheck_at = data.recheck_at.data();
   const double motion = data.motion;
-  int count = 0;
-  for (int e = 0; e < n; ++e) {
-    due[count] = e;
-    count += recheck_at[e] <= motion ? 1 : 0;
+  uint64_t* masks = data.due_mask.data();
+  long count = 0;
+  for (int base = 0, w = 0; base < n; base += 64, ++w) {
+    const double* r = recheck_at + base;
+    uint64_t mask = 0;
+    int k = 0;
+#ifdef __SSE2__
+    if (n - base >= 64) {
+      const __m128d limit = _mm_set1_pd(motion);
+      for (; k < 64; k += 4) {
+        const __m128 lo = _mm_castpd_ps(_mm_cmple_pd(_mm_loadu_pd(r + k), limit));
+        const __m128 hi = _mm_castpd_ps(_mm_cmple_pd(_mm_loadu_pd(r + k + 2), limit));
+        // one 32-bit half of each 64-bit comparison: four mask bits at once
+        const unsigned four =
+            static_cast<unsigned>(_mm_movemask_ps(_mm_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0))));
+        mask |= static_cast<uint64_t>(four) << k;
+      }
+    }
+#endif
+    for (; k < std::min(64, n - base); ++k) mask |= static_cast<uint64_t>(r[k] <= motion) << k;
+    masks[w] = mask;
+    count += std::popcount(mask);
   }
-  data.due.resize(count);
+  data.due.resize(count);  // capacity reserved (make_data); grows by a few entries at most
+  int* due = data.due.data();
+  for (int base = 0, w = 0; base < n; base += 64, ++w) {
+    for (uint64_t mask = masks[w]; mask != 0; mask &= mask - 1) {
+      *due++ = base + std::countr_zero(mask);
+    }
+  }
 }
 
 namespace {
@@ -55,6 +85,17 @@ CarriageMotion find_carriage_motion(const State& state, const Data& data, int c)
               data.axes[c][2] * cs.rate[5],
           cs.pivot_W};
 }
+
+// the affine map from the insert frame T into a field's grid coordinates, g = A p_T + b
+// [nodes]: X_FT followed by (p_F - origin) / spacing, one map per element instead of two
+// transforms, a subtraction and three divisions
+struct GridMap {
+  Eigen::Matrix3d A;
+  Eigen::Vector3d b;
+  GridMap(const SignedDistanceField& f, const Eigen::Isometry3d& X_FT)
+      : A(X_FT.linear() / f.spacing), b((X_FT.translation() - f.origin) / f.spacing) {}
+  Eigen::Vector3d operator()(const Eigen::Vector3d& p_T) const { return A * p_T + b; }
+};
 
 }  // namespace
 
@@ -75,134 +116,288 @@ void finish_contact_summary(const Model& model, const std::array<double, 2>& wei
   }
 }
 
-void calc_contact(const Model& model, const State& state, Data& data) {
-  update_contact_schedule(model, data);
-  const InsertSurface& s = model.insert;
-  const ContactModel& cm = model.contact;
-  const SignedDistanceField& field = model.femur_sdf;
-  const SignedDistanceField& far_field = model.femur_far_sdf;
-  const Eigen::Isometry3d X_FW = data.X_WF.inverse();
-  const Eigen::Matrix3d R_TW = data.X_WT.linear().transpose();
-  const CarriageMotion femur = find_carriage_motion(state, data, 0);
-  const CarriageMotion tibia = find_carriage_motion(state, data, 1);
-  const double radius2 = model.femur_radius * model.femur_radius;
-  const int n = static_cast<int>(data.due.size());
-  data.evaluations += n;
+namespace {
 
-  // element-local evaluation (parallel when large; each element writes only its own slots)
-#pragma omp parallel for schedule(static) if (n > 2000) num_threads(model.threads)
-  for (int i = 0; i < n; ++i) {
-    const int e = data.due[i];
-    const Eigen::Vector3d c_F = X_FW * (data.X_WT * s.centroid_T[e]);
-    const double phi = field.sample(c_F);
+// what the reduction needs of an element in contact: centroid and normal [m, -], world;
+// force on the femur [N]; elastic pressure [Pa]; penetration [m]; normal stiffness A dp/dd
+// [N/m]; friction slope [N s/m]
+struct ContactTerms {
+  Eigen::Vector3d c_W, n_W, force_W;
+  double pressure = 0.0, penetration = 0.0, ke = 0.0, ce = 0.0;
+};
+
+// the element loop of one step: its constants and the element arrays it reads and writes,
+// gathered in one object of which each thread takes a private copy. Read through model and
+// data instead, every member would be reloaded after each store (Eigen's vector stores may
+// alias anything), and the search's few dozen instructions per element would double.
+struct ElementLoop {
+  // search: the fine and far fields, the maps into their grids, the femoral origin in T
+  FieldSampler fine, far;
+  GridMap to_fine, to_far;
+  double band = 0.0, far_spacing = 0.0;
+  bool has_far = false;  // a model may come without the far field (hand-built test models)
+  Eigen::Vector3d o_T;
+  double femur_radius = 0.0, radius2 = 0.0, motion = 0.0;
+  // contact: the insert pose, the carriages' motion, the laws
+  Eigen::Matrix3d R_WT, R_TW;
+  Eigen::Vector3d t_WT;
+  CarriageMotion femur, tibia;
+  ContactModel law;
+  const Eigen::Vector3d* centroid_T;
+  const Eigen::Vector3d* normal_T;
+  const double* thickness;
+  const double* area;
+  // per-element results (Data)
+  double* recheck_at;
+  double* pressure;
+  double* penetration;
+  double* slip_speed;
+  double* friction_viscosity;
+  Eigen::Vector3d* slip_velocity_T;
+  Eigen::Vector3d* element_force_W;
+
+  ElementLoop(const Model& model, const State& state, Data& data)
+      : fine(model.femur_sdf.sampler()),
+        far(model.femur_far_sdf.sampler()),
+        to_fine(model.femur_sdf, data.X_WF.inverse() * data.X_WT),
+        to_far(model.femur_far_sdf, data.X_WF.inverse() * data.X_WT),
+        band(model.femur_sdf.band),
+        far_spacing(model.femur_far_sdf.spacing),
+        has_far(!model.femur_far_sdf.empty()),
+        // F's origin in T: |p_F| = |p_T - o_T| (a rigid map keeps lengths)
+        o_T(data.X_WT.inverse() * data.X_WF.translation()),
+        femur_radius(model.femur_radius),
+        radius2(model.femur_radius * model.femur_radius),
+        motion(data.motion),
+        R_WT(data.X_WT.linear()),
+        R_TW(data.X_WT.linear().transpose()),
+        t_WT(data.X_WT.translation()),
+        femur(find_carriage_motion(state, data, 0)),
+        tibia(find_carriage_motion(state, data, 1)),
+        law(model.contact),
+        centroid_T(model.insert.centroid_T.data()),
+        normal_T(model.insert.normal_T.data()),
+        thickness(model.insert.thickness.data()),
+        area(model.insert.area.data()),
+        recheck_at(data.recheck_at.data()),
+        pressure(data.pressure.data()),
+        penetration(data.penetration.data()),
+        slip_speed(data.slip_speed.data()),
+        friction_viscosity(data.friction_viscosity.data()),
+        slip_velocity_T(data.slip_velocity_T.data()),
+        element_force_W(data.element_force_W.data()) {}
+
+  // the element's distance, its next evaluation, and while in contact its pressure, slip and
+  // force; writes only element e's slots. True when in contact, with the terms the reduction
+  // needs in `terms`.
+  [[gnu::always_inline]] bool evaluate(int e, ContactTerms& terms) const {
+    const Eigen::Vector3d c_T = centroid_T[e];
+    const double phi = fine.sample_grid(to_fine(c_T));
     const double d = -phi;
     if (d <= 0.0) {
       // out of contact: sleep until the motion could have closed the gap; beyond the fine
       // band the coarse field (less its interpolation error) tells the distance
       double gap = phi;
-      if (phi >= field.band) {
-        const double far = far_field.sample(c_F) - far_field.spacing;
-        gap = std::max(phi, far);
-      }
-      const double r2 = c_F.squaredNorm();
-      if (model.femur_radius > 0.0 && r2 > radius2) {
+      if (phi >= band && has_far) gap = std::max(phi, far.sample_grid(to_far(c_T)) - far_spacing);
+      const double r2 = (c_T - o_T).squaredNorm();
+      if (femur_radius > 0.0 && r2 > radius2) {
         // a point farther from the femoral origin than femur_radius moves proportionally more
-        gap *= model.femur_radius / std::sqrt(r2);
+        gap *= femur_radius / std::sqrt(r2);
       }
-      data.recheck_at[e] = data.motion + kLipschitz * gap;
-      if (data.penetration[e] != 0.0) {
+      recheck_at[e] = motion + kLipschitz * gap;
+      if (penetration[e] != 0.0) {
         // leaving contact: clear the element's slots (they stay zero while it is out, and
         // most evaluations are of elements out of contact: five scattered stores saved)
-        data.pressure[e] = 0.0;
-        data.penetration[e] = 0.0;
-        data.slip_speed[e] = 0.0;
-        data.slip_velocity_T[e].setZero();
-        data.element_force_W[e].setZero();
+        pressure[e] = 0.0;
+        penetration[e] = 0.0;
+        slip_speed[e] = 0.0;
+        slip_velocity_T[e].setZero();
+        element_force_W[e].setZero();
       }
-      continue;
+      return false;
     }
-    data.recheck_at[e] = data.motion;  // in contact: evaluate every step
-    const Eigen::Vector3d c_W = data.X_WT * s.centroid_T[e];
-    const Eigen::Vector3d n_W = data.X_WT.linear() * s.normal_T[e];
-    const double h = s.thickness[e];
+    recheck_at[e] = motion;  // in contact: evaluate every step
+    const Eigen::Vector3d c_W = R_WT * c_T + t_WT;
+    const Eigen::Vector3d n_W = R_WT * normal_T[e];
+    const double h = thickness[e];
     // relative velocity of the femoral surface over the insert at the element
     const Eigen::Vector3d v_rel = (femur.v + femur.w.cross(c_W - femur.pivot)) -
                                   (tibia.v + tibia.w.cross(c_W - tibia.pivot));
     const double closing = -v_rel.dot(n_W);  // rate of penetration [m/s]
     const Eigen::Vector3d v_slip = v_rel + closing * n_W;
-    const double p_elastic = ef_pressure(cm.law, cm.foundation_modulus, d, h);
-    const double p_damping =
-        cm.damping_beta * ef_stiffness(cm.law, cm.foundation_modulus, d, h) * closing;
+    const double p_elastic = ef_pressure(law.law, law.foundation_modulus, d, h);
+    const double k_area = ef_stiffness(law.law, law.foundation_modulus, d, h);
+    const double p_damping = law.damping_beta * k_area * closing;
     // the damper may at most double or cancel the elastic pressure: an impact (a fast closing
     // speed) must not produce a force spike that the stable step does not cover
     const double p = p_elastic + std::clamp(p_damping, -p_elastic, p_elastic);
-    const Eigen::Vector3d traction = p * n_W + friction_traction(cm.friction, p, v_slip,
-                                                                 cm.slip_regularization);
-    data.pressure[e] = p_elastic;
-    data.penetration[e] = d;
-    data.slip_speed[e] = v_slip.norm();
-    data.slip_velocity_T[e] = R_TW * v_slip;
-    data.element_force_W[e] = s.area[e] * traction;
-    data.friction_viscosity[e] = s.area[e] * cm.friction * p /
-                                 std::sqrt(v_slip.squaredNorm() +
-                                           cm.slip_regularization * cm.slip_regularization);
-  }
-  data.in_contact.clear();
-  for (int i = 0; i < n; ++i) {
-    if (data.penetration[data.due[i]] > 0.0) data.in_contact.push_back(data.due[i]);
+    const Eigen::Vector3d traction =
+        p * n_W + friction_traction(law.friction, p, v_slip, law.slip_regularization);
+    terms.c_W = c_W;
+    terms.n_W = n_W;
+    terms.force_W = area[e] * traction;
+    terms.pressure = p_elastic;
+    terms.penetration = d;
+    terms.ke = area[e] * k_area;
+    terms.ce = area[e] * law.friction * p /
+               std::sqrt(v_slip.squaredNorm() + law.slip_regularization * law.slip_regularization);
+    pressure[e] = p_elastic;
+    penetration[e] = d;
+    slip_speed[e] = v_slip.norm();
+    slip_velocity_T[e] = R_TW * v_slip;
+    element_force_W[e] = terms.force_W;
+    friction_viscosity[e] = terms.ce;
+    return true;
   }
 
-  // fixed-order reduction: totals, per-condyle summary, torques about the pivots, and the
-  // tangent stiffness per DOF for the stability monitor
-  ContactSummary sum;  // local until complete (see friction_damping below)
-  sum.cop_T = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  // the terms of an element that evaluate() found in contact this step, again from its slots
+  // (the parallel path): the same expressions, so the same bits
+  ContactTerms find_terms(int e) const {
+    ContactTerms t;
+    t.c_W = R_WT * centroid_T[e] + t_WT;
+    t.n_W = R_WT * normal_T[e];
+    t.force_W = element_force_W[e];
+    t.pressure = pressure[e];
+    t.penetration = penetration[e];
+    t.ke = area[e] * ef_stiffness(law.law, law.foundation_modulus, penetration[e], thickness[e]);
+    t.ce = friction_viscosity[e];
+    return t;
+  }
+};
+
+// symmetric 3x3 as xx, yy, zz, xy, xz, yz
+using Sym3 = std::array<double, 6>;
+
+// S += w v v^T
+inline void add_outer(Sym3& S, double w, const Eigen::Vector3d& v) {
+  const Eigen::Vector3d wv = w * v;
+  S[0] += wv.x() * v.x();
+  S[1] += wv.y() * v.y();
+  S[2] += wv.z() * v.z();
+  S[3] += wv.x() * v.y();
+  S[4] += wv.x() * v.z();
+  S[5] += wv.y() * v.z();
+}
+
+// a^T S a
+inline double quadratic_form(const Sym3& S, const Eigen::Vector3d& a) {
+  return a.x() * a.x() * S[0] + a.y() * a.y() * S[1] + a.z() * a.z() * S[2] +
+         2.0 * (a.x() * a.y() * S[3] + a.x() * a.z() * S[4] + a.y() * a.z() * S[5]);
+}
+
+// the tangent stiffness and the friction's viscous slope per DOF of a carriage, summed over
+// the elements in contact as second moments: with r = c - pivot and u = r x n, the rotational
+// DOF about axis a has stiffness sum ke (a.u)^2 = a^T (sum ke u u^T) a and friction slope
+// sum ce (|a x r|^2 - (a.u)^2) = |a|^2 tr(Cr) - a^T Cr a - a^T Cu a with Cr = sum ce r r^T
+// and Cu = sum ce u u^T: three 3x3 sums per element instead of nine cross and dot products
+struct CarriageMoments {
+  Sym3 ku{}, cu{}, cr{};
+  void add(double ke, double ce, const Eigen::Vector3d& r, const Eigen::Vector3d& n) {
+    const Eigen::Vector3d u = r.cross(n);
+    add_outer(ku, ke, u);
+    add_outer(cu, ce, u);
+    add_outer(cr, ce, r);
+  }
+};
+
+// fixed-order reduction over the elements in contact (ascending): totals, per-condyle
+// summary, moment about the world origin, and the moments of the tangent stiffness and
+// friction slope for the stability monitor and the implicit friction damping
+struct ContactReduction {
+  ContactSummary sum;
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment_O = Eigen::Vector3d::Zero();
   std::array<double, 2> weight{};
-  std::array<std::array<double, kNumDof>, 2> stiffness{};
-  // local copies: stores into data would be reloaded at every element (they might alias)
-  std::array<std::array<double, kNumDof>, 2> friction_damping{};
-  const std::array<std::array<Eigen::Vector3d, 3>, 2> axes = data.axes;
-  const std::array<Eigen::Vector3d, 2> pivots = {state.carriages[0].pivot_W,
-                                                 state.carriages[1].pivot_W};
-  for (int e : data.in_contact) {
-    const Eigen::Vector3d c_W = data.X_WT * s.centroid_T[e];
-    const Eigen::Vector3d n_W = data.X_WT.linear() * s.normal_T[e];
-    const double ke = s.area[e] * ef_stiffness(cm.law, cm.foundation_modulus,
-                                               data.penetration[e], s.thickness[e]);
-    const double ce = data.friction_viscosity[e];
-    for (int c = 0; c < 2; ++c) {
-      const Eigen::Vector3d r = c_W - pivots[c];
-      const Eigen::Vector3d rxn = r.cross(n_W);
-      for (int i = 0; i < 3; ++i) {
-        // normal stiffness along the DOF's direction; friction acts on its tangential part
-        stiffness[c][i] += ke * n_W[i] * n_W[i];
-        friction_damping[c][i] += ce * (1.0 - n_W[i] * n_W[i]);
-        const double j = axes[c][i].dot(rxn);
-        stiffness[c][3 + i] += ke * j * j;
-        const double jj = axes[c][i].cross(r).squaredNorm();
-        friction_damping[c][3 + i] += ce * (jj - j * j);
-      }
+  // the translational DOFs (world axes) are the same for both carriages
+  std::array<double, 3> stiffness_t{}, friction_t{};
+  std::array<CarriageMoments, 2> moments;
+  std::array<Eigen::Vector3d, 2> pivots;
+
+  explicit ContactReduction(const State& state)
+      : pivots{state.carriages[0].pivot_W, state.carriages[1].pivot_W} {}
+
+  [[gnu::always_inline]] void add(const InsertSurface& s, int e, const ContactTerms& t) {
+    for (int i = 0; i < 3; ++i) {
+      // normal stiffness along the DOF's direction; friction acts on its tangential part
+      stiffness_t[i] += t.ke * t.n_W[i] * t.n_W[i];
+      friction_t[i] += t.ce * (1.0 - t.n_W[i] * t.n_W[i]);
     }
-    const Eigen::Vector3d& f = data.element_force_W[e];
-    force += f;
-    moment_O += c_W.cross(f);
-    const double p = data.pressure[e];
+    for (int c = 0; c < 2; ++c) moments[c].add(t.ke, t.ce, t.c_W - pivots[c], t.n_W);
+    force += t.force_W;
+    moment_O += t.c_W.cross(t.force_W);
+    const double p = t.pressure, d = t.penetration;
     const int side = s.medial[e] ? 0 : 1;
     sum.normal_force[side] += p * s.area[e];
     sum.area[side] += s.area[e];
     sum.cop_T[side] += (p * s.area[e]) * s.centroid_T[e];
     weight[side] += p * s.area[e];
     sum.peak_pressure = std::max(sum.peak_pressure, p);
-    sum.max_penetration = std::max(sum.max_penetration, data.penetration[e]);
-    sum.max_penetration_ratio =
-        std::max(sum.max_penetration_ratio, data.penetration[e] / s.thickness[e]);
+    sum.max_penetration = std::max(sum.max_penetration, d);
+    sum.max_penetration_ratio = std::max(sum.max_penetration_ratio, d / s.thickness[e]);
     ++sum.elements_in_contact;
   }
-  data.friction_damping = friction_damping;
-  sum.force_W = force;
-  sum.tray_force_W = -force;
-  finish_contact_summary(model, weight, stiffness, sum);
-  data.contact = sum;
+
+  // the summary into data.contact, the friction slopes into data.friction_damping
+  void finish(const Model& model, Data& data) {
+    std::array<std::array<double, kNumDof>, 2> stiffness{};
+    for (int c = 0; c < 2; ++c) {
+      const CarriageMoments& mc = moments[c];
+      const double trace_cr = mc.cr[0] + mc.cr[1] + mc.cr[2];
+      for (int i = 0; i < 3; ++i) {
+        const Eigen::Vector3d& a = data.axes[c][i];
+        stiffness[c][i] = stiffness_t[i];
+        stiffness[c][3 + i] = quadratic_form(mc.ku, a);
+        data.friction_damping[c][i] = friction_t[i];
+        data.friction_damping[c][3 + i] =
+            a.squaredNorm() * trace_cr - quadratic_form(mc.cr, a) - quadratic_form(mc.cu, a);
+      }
+    }
+    sum.force_W = force;
+    sum.tray_force_W = -force;
+    finish_contact_summary(model, weight, stiffness, sum);
+    data.contact = sum;
+  }
+};
+
+}  // namespace
+
+void calc_contact(const Model& model, const State& state, Data& data) {
+  update_contact_schedule(model, data);
+  const int n = static_cast<int>(data.due.size());
+  const int* due = data.due.data();
+  data.evaluations += n;
+  data.in_contact.clear();
+  const ElementLoop loop(model, state, data);
+  ContactReduction reduction(state);
+  if (n > kParallelAbove) {
+    // element-local evaluation in parallel (each element writes only its own slots), then the
+    // reduction in element order: bit-identical for any thread count
+#pragma omp parallel num_threads(model.threads)
+    {
+      const ElementLoop local = loop;  // a private copy: its members stay in registers
+      ContactTerms terms;
+#pragma omp for schedule(static)
+      for (int i = 0; i < n; ++i) local.evaluate(due[i], terms);
+    }
+    for (int i = 0; i < n; ++i) {
+      const int e = due[i];
+      if (data.penetration[e] > 0.0) {
+        data.in_contact.push_back(e);
+        reduction.add(model.insert, e, loop.find_terms(e));
+      }
+    }
+  } else {
+    // the same in one pass: each element's terms go to the reduction as it is evaluated
+    const ElementLoop local = loop;
+    ContactTerms terms;
+    for (int i = 0; i < n; ++i) {
+      const int e = due[i];
+      if (!local.evaluate(e, terms)) continue;
+      data.in_contact.push_back(e);
+      reduction.add(model.insert, e, terms);
+    }
+  }
+  reduction.finish(model, data);
+  const Eigen::Vector3d force = reduction.force, moment_O = reduction.moment_O;
 
   // generalized forces: +force on the femur, -force on the tibia
   for (int c = 0; c < 2; ++c) {

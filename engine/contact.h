@@ -30,6 +30,9 @@ namespace kneesim::engine {
 // along the grid axes, and up to sqrt(3) only across creases, so 0.7 keeps a margin
 inline constexpr double kLipschitz = 0.7;
 
+// due elements above which a step evaluates them in parallel (model.threads)
+inline constexpr int kParallelAbove = 2000;
+
 // accumulates the relative motion and lists in data.due the elements to evaluate this step;
 // allocation-free
 void update_contact_schedule(const Model& model, Data& data);

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "engine/model.h"
@@ -41,6 +42,8 @@ struct Data {
   Eigen::Isometry3d X_FT_prev = Eigen::Isometry3d::Identity();
   bool schedule_valid = false;
   std::vector<int> due;                    // elements evaluated this step, ascending
+  std::vector<uint64_t> due_mask;          // scratch of the schedule: bit e % 64 of word e / 64
+                                           // set when element e is due
   std::vector<int> in_contact;             // elements with penetration > 0, ascending
   long evaluations = 0;                    // element evaluations so far
   double insert_radius = 0.0;              // max |centroid_T| [m], bounds rotation sweep

@@ -16,47 +16,63 @@
 
 namespace kneesim::engine {
 
+FieldSampler SignedDistanceField::sampler() const {
+  FieldSampler f;
+  f.band = band;
+  f.outside = static_cast<float>(band);
+  f.inside = static_cast<float>(-band);
+  // an empty field has no cells: every point is outside its grid
+  for (int a = 0; a < 3; ++a) {
+    f.limit[a] = storage ? dims[a] - 1 : 0;
+    f.axis[a] = storage ? storage->axes[a].data() : nullptr;
+  }
+  f.brick_of = storage ? storage->brick_of.data() : nullptr;
+  f.values = storage ? storage->values.data() : nullptr;
+  return f;
+}
+
+void make_brick_axes(const SignedDistanceField& field, SignedDistanceField::Storage& storage) {
+  const int32_t brick_stride[3] = {1, field.bricks.x(), field.bricks.x() * field.bricks.y()};
+  const int32_t node_stride[3] = {1, kBrickNodes, kBrickNodes * kBrickNodes};
+  for (int a = 0; a < 3; ++a) {
+    storage.axes[a].resize(std::max(0, field.dims[a] - 1));
+    for (int i = 0; i < field.dims[a] - 1; ++i) {
+      const int b = i / kBrickCells;
+      storage.axes[a][i] = {b * brick_stride[a], (i - kBrickCells * b) * node_stride[a]};
+    }
+  }
+}
+
 double SignedDistanceField::sample(const Eigen::Vector3d& p_F, Eigen::Vector3d* gradient) const {
   const Eigen::Vector3d g = (p_F - origin) / spacing;
-  // outside the grid's cells (or NaN); inside, truncation is the floor (std::floor is a libm
-  // call on the baseline x86-64 target, which has no roundsd)
+  const double phi = sample_grid(g);
+  if (!gradient) return phi;
+  gradient->setZero();
+  // outside the grid or in a brick of clamp values: the interpolant is flat
   if (!(g.x() >= 0.0 && g.y() >= 0.0 && g.z() >= 0.0 && g.x() < dims.x() - 1 &&
         g.y() < dims.y() - 1 && g.z() < dims.z() - 1)) {
-    if (gradient) gradient->setZero();
-    return band;
+    return phi;
   }
   const int i = static_cast<int>(g.x()), j = static_cast<int>(g.y()), k = static_cast<int>(g.z());
-  const double fx = i, fy = j, fz = k;
-  // the cell's brick, and the cell's corner (0,0,0) inside it
-  const int bi = i / kBrickCells, bj = j / kBrickCells, bk = k / kBrickCells;
-  const Storage& st = *storage;
-  const int32_t brick = st.brick_of[bi + bricks.x() * (bj + bricks.y() * bk)];
-  if (brick < 0) {
-    // every corner holds the clamp value: the interpolation would return it exactly
-    if (gradient) gradient->setZero();
-    return static_cast<float>(brick == kBrickOutside ? band : -band);
-  }
-  const double tx = g.x() - fx, ty = g.y() - fy, tz = g.z() - fz;
+  const BrickAxis ax = storage->axes[0][i], ay = storage->axes[1][j], az = storage->axes[2][k];
+  const int32_t brick = storage->brick_of[ax.brick + ay.brick + az.brick];
+  if (brick < 0) return phi;
+  const double tx = g.x() - static_cast<double>(i), ty = g.y() - static_cast<double>(j),
+               tz = g.z() - static_cast<double>(k);
   constexpr long sx = 1, sy = kBrickNodes, sz = kBrickNodes * kBrickNodes;
-  const float* phi = st.values.data() + static_cast<long>(brick) * kBrickSize;
-  const long base = (i - kBrickCells * bi) + sy * (j - kBrickCells * bj) +
-                    sz * (k - kBrickCells * bk);
-  const double c000 = phi[base], c100 = phi[base + sx];
-  const double c010 = phi[base + sy], c110 = phi[base + sx + sy];
-  const double c001 = phi[base + sz], c101 = phi[base + sx + sz];
-  const double c011 = phi[base + sy + sz], c111 = phi[base + sx + sy + sz];
-  // interpolate along x, then y, then z
+  const float* c = storage->values.data() + static_cast<long>(brick) * kBrickSize +
+                   (ax.node + ay.node + az.node);
+  const double c000 = c[0], c100 = c[sx], c010 = c[sy], c110 = c[sx + sy];
+  const double c001 = c[sz], c101 = c[sx + sz], c011 = c[sy + sz], c111 = c[sx + sy + sz];
   const double c00 = c000 + tx * (c100 - c000), c10 = c010 + tx * (c110 - c010);
   const double c01 = c001 + tx * (c101 - c001), c11 = c011 + tx * (c111 - c011);
   const double c0 = c00 + ty * (c10 - c00), c1 = c01 + ty * (c11 - c01);
-  if (gradient) {
-    const double dx0 = (c100 - c000) + ty * ((c110 - c010) - (c100 - c000));
-    const double dx1 = (c101 - c001) + ty * ((c111 - c011) - (c101 - c001));
-    const double dy0 = c10 - c00, dy1 = c11 - c01;
-    *gradient = Eigen::Vector3d(dx0 + tz * (dx1 - dx0), dy0 + tz * (dy1 - dy0), c1 - c0) /
-                spacing;
-  }
-  return c0 + tz * (c1 - c0);
+  const double dx0 = (c100 - c000) + ty * ((c110 - c010) - (c100 - c000));
+  const double dx1 = (c101 - c001) + ty * ((c111 - c011) - (c101 - c001));
+  const double dy0 = c10 - c00, dy1 = c11 - c01;
+  *gradient =
+      Eigen::Vector3d(dx0 + tz * (dx1 - dx0), dy0 + tz * (dy1 - dy0), c1 - c0) / spacing;
+  return phi;
 }
 
 int SignedDistanceField::stored_bricks() const {
@@ -65,7 +81,9 @@ int SignedDistanceField::stored_bricks() const {
 
 size_t SignedDistanceField::bytes() const {
   return storage ? storage->values.size() * sizeof(float) +
-                       storage->brick_of.size() * sizeof(int32_t)
+                       storage->brick_of.size() * sizeof(int32_t) +
+                       (storage->axes[0].size() + storage->axes[1].size() +
+                        storage->axes[2].size()) * sizeof(BrickAxis)
                  : 0;
 }
 
@@ -168,6 +186,7 @@ void make_bricks(const std::vector<float>& phi, SignedDistanceField& sdf) {
         entry = static_cast<int32_t>(storage->values.size() / kBrickSize);
         storage->values.insert(storage->values.end(), brick.begin(), brick.end());
       }
+  make_brick_axes(sdf, *storage);
   sdf.storage = std::move(storage);
 }
 

@@ -246,6 +246,7 @@ Data make_data(const Model& model) {
   const int n = model.insert.size();
   data.recheck_at.assign(n, 0.0);
   data.due.reserve(n);
+  data.due_mask.assign((n + 63) / 64, 0);
   data.in_contact.reserve(n);
   data.pressure.assign(n, 0.0);
   data.penetration.assign(n, 0.0);

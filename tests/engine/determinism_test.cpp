@@ -10,6 +10,7 @@
 
 #include <cstring>
 
+#include "engine/contact.h"
 #include "engine/sdf.h"
 #include "engine/step.h"
 #include "engine_fixtures.h"
@@ -19,7 +20,6 @@ using namespace kneesim;
 
 namespace {
 
-constexpr size_t kParallelAbove = 2000;  // engine/contact.cpp: `if (n > 2000)`
 
 struct RunOutcome {
   uint64_t hash = 0;
@@ -33,7 +33,7 @@ RunOutcome run_steps(const engine::Model& model, int steps) {
   RunOutcome out;
   for (int i = 0; i < steps; ++i) {
     REQUIRE(engine::step(model, s, d) == engine::StepStatus::kOk);
-    if (d.due.size() > kParallelAbove) ++out.parallel_steps;
+    if (d.due.size() > static_cast<size_t>(engine::kParallelAbove)) ++out.parallel_steps;
   }
   out.hash = engine::hash_state(s);
   out.contact_y = d.contact.force_W.y();

@@ -8,9 +8,9 @@
 // builders of one key wait for the first instead of building it twice. The last few fields
 // stay cached; older ones live as long as a Model holds them.
 //
-// There is no on-disk cache yet: it would beat rebuilding for one-shot runs of one implant
-// (the default femur's fine field builds in ~0.4 s CPU, stores 3.9 MB), but a comparison,
-// diagnosis or study in one process already pays the build once (docs/performance.md).
+// Below this in-process cache lies a disk cache (models/distance_field_disk.h): a process that
+// has not built a field yet reads it from there when an earlier run stored it, so a one-shot
+// run of an implant built before does not pay the build.
 #pragma once
 
 #include <Eigen/Core>
@@ -25,7 +25,9 @@ engine::SignedDistanceField find_or_make_distance_field(
     const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles,
     double spacing, double band);
 
-// fields this process has built so far (tests: a second Model must not build again)
+// fields this process has built so far (tests: a second Model must not build again), and
+// fields it has read from the disk cache instead
 long count_distance_field_builds();
+long count_distance_field_reads();
 
 }  // namespace kneesim::models

@@ -4,7 +4,8 @@
 // RMS difference of their AP and IE traces. Then the figures of docs/performance.md: the
 // distance field's build time and memory, dense (the layout before issue 13) against bricked
 // sampling of the same points of a gait cycle in the same run (a ratio that survives a busy
-// machine), and hardware counters per evaluation where the CPU exposes them (a VM often does
+// machine), the disk cache's write and checked read of the field against its build, and
+// hardware counters per evaluation where the CPU exposes them (a VM often does
 // not: docs/performance.md has the callgrind counts). Every figure is the median of --repeats
 // runs on one thread; run it on a quiet machine in a Release build:
 //
@@ -15,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -26,6 +28,7 @@
 
 #include "engine/simulate.h"
 #include "models/build_model.h"
+#include "models/distance_field_disk.h"
 
 namespace {
 
@@ -34,6 +37,12 @@ using namespace kneesim;
 double cpu_seconds() {
   timespec ts;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+double wall_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
@@ -241,11 +250,36 @@ int main(int argc, char** argv) {
     build_s.push_back(cpu_seconds() - c0);
   }
   const double nodes = static_cast<double>(field.dims.prod());
+  // the disk cache (models/distance_field_disk.h): writing the field's file, and reading it
+  // back with every check, against building it
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("kneesim-bench-" + std::to_string(getpid())) /
+      models::field_file_name(def.implant.femur.vertices, def.implant.femur.triangles,
+                              field.spacing, field.band);
+  std::vector<double> write_s, read_s;
+  for (int r = 0; r < std::max(1, repeats / 2); ++r) {
+    const double w0 = wall_seconds();
+    models::write_field_file(file, def.implant.femur.vertices, def.implant.femur.triangles,
+                             field);
+    const double w1 = wall_seconds();
+    const auto read = models::read_field_file(file, def.implant.femur.vertices,
+                                              def.implant.femur.triangles, field.spacing,
+                                              field.band);
+    const double w2 = wall_seconds();
+    if (!read) std::printf("(the field file did not read back)\n");
+    write_s.push_back(w1 - w0);
+    read_s.push_back(w2 - w1);
+  }
+  const auto file_bytes = std::filesystem::file_size(file);
+  std::filesystem::remove_all(file.parent_path());
   std::printf("\n| femoral field (edge 1.0 mm) | nodes | dense MB | bricks stored / all | "
-              "bricked MB | build s (CPU, 1 thread) |\n|---|---|---|---|---|---|\n");
-  std::printf("| spacing %.2f mm, band %.2f mm | %.0f | %.1f | %d / %d | %.1f | %.3f |\n",
+              "bricked MB | build s (CPU, 1 thread) | file MB | write s (wall) | read s (wall, "
+              "checked) |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| spacing %.2f mm, band %.2f mm | %.0f | %.1f | %d / %d | %.1f | %.3f | %.1f | "
+              "%.3f | %.3f |\n",
               1e3 * field.spacing, 1e3 * field.band, nodes, 4e-6 * nodes, field.stored_bricks(),
-              field.bricks.prod(), 1e-6 * field.bytes(), median(build_s));
+              field.bricks.prod(), 1e-6 * field.bytes(), median(build_s), 1e-6 * file_bytes,
+              median(write_s), median(read_s));
   std::fflush(stdout);
 
   // before/after: the same points of a gait cycle sampled in the dense layout and the bricked

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "analysis/diagnosis/text_format.h"
 #include "analysis/diagnosis/diagnosis_output.h"
 #include "analysis/diagnosis/report.h"
 #include "engine/errors.h"
@@ -13,16 +14,6 @@
 
 namespace kneesim::diagnosis {
 namespace {
-
-std::string fmt(const char* f, double v) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 double rms(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   double ss = 0.0;

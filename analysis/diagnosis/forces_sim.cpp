@@ -8,6 +8,7 @@
 #include <numbers>
 #include <thread>
 
+#include "analysis/diagnosis/text_format.h"
 #include "engine/simulate.h"
 #include "engine/stable_step.h"
 #include "engine/step.h"
@@ -18,12 +19,6 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr size_t kCacheLimit = 4096;
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 }  // namespace
 

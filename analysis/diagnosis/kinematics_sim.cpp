@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "analysis/diagnosis/text_format.h"
 #include "engine/simulate.h"
 #include "loads/iso14243/conventions.h"
 
@@ -13,12 +14,6 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 constexpr size_t kCacheLimit = 512;
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 }  // namespace
 

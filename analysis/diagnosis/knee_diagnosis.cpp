@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "analysis/diagnosis/text_format.h"
 #include "analysis/diagnosis/diagnosis_output.h"
 #include "analysis/diagnosis/kinematics_case.h"
 #include "analysis/diagnosis/knee_wear_case.h"
@@ -17,16 +18,6 @@
 
 namespace kneesim::diagnosis {
 namespace {
-
-std::string fmt(const char* f, double v) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // the approximation check: the full geometry-updating wear loop (`kneesim wear`) with the
 // extended model's law on the calibration condition, against the linear prediction

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <set>
 
+#include "analysis/diagnosis/text_format.h"
 #include "analysis/diagnosis/measured_csv.h"
 #include "engine/errors.h"
 
@@ -19,12 +20,6 @@ struct KneeModel {
   MeasuredData measured;
   double reference_pressure = 10e6;  // p_ref [Pa]
 };
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 // least-squares slope of volume against cycles [mm^3/cycle]
 double slope_of(const std::vector<double>& xs, const std::vector<double>& ys) {

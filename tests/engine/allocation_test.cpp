@@ -30,8 +30,11 @@ std::atomic<long> g_allocations{0};  // heap allocations in this process [-]
 #ifdef KNEESIM_ASAN
 // Under AddressSanitizer the allocator belongs to the sanitizer: replacing malloc breaks its
 // start-up. It offers a hook instead, called for every allocation it serves (malloc, new,
-// aligned new), which counts the same events.
-#include <sanitizer/allocator_interface.h>
+// aligned new), which counts the same events. Declared here rather than through
+// <sanitizer/allocator_interface.h>: clang ships that header, gcc 12 does not, while both
+// runtimes (libclang_rt.asan, libasan 8) export the function with this signature.
+extern "C" int __sanitizer_install_malloc_and_free_hooks(
+    void (*malloc_hook)(const volatile void*, size_t), void (*free_hook)(const volatile void*));
 namespace {
 void count_allocation(const volatile void*, size_t) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/solid/hex8.h"
+#include "engine/solid/hex8_batch.h"
 #include "engine/solid/solid_material.h"
 
 namespace kneesim::engine::solid {
@@ -23,13 +24,17 @@ struct SolidModel {
   std::vector<Eigen::Vector3d> reference_positions;  // X [m], n_nodes
   std::vector<std::array<int, kHexNodes>> elements;  // node ids, n_elements
   std::vector<Hex8Reference> reference;              // per element
+  // the element loop's compact reference data, kBatchLanes elements per batch (hex8_batch.h)
+  std::vector<Hex8Batch> batches;                    // ceil(n_elements / kBatchLanes)
   std::vector<double> nodal_mass;        // lumped mass incl. any mass scaling [kg], n_nodes
   std::vector<double> inverse_mass;      // 1 / nodal_mass [1/kg], n_nodes
   std::vector<uint8_t> constraint;       // kFix* bits, n_nodes
   // node -> (element, local node) incidence in CSR form, ascending element order: the
-  // fixed gather order of the element force buffers
+  // fixed gather order of the element force buffers. Each entry is the index of the x
+  // component of that element node's force in SolidData::batch_force seen as a flat array of
+  // doubles (y and z follow at + kBatchLanes and + 2 kBatchLanes)
   std::vector<int> incidence_start;      // n_nodes + 1
-  std::vector<int> incidence;            // element * 8 + local node
+  std::vector<int> incidence;
   double physical_mass = 0.0;            // rho V [kg]
   double added_mass = 0.0;               // mass added by mass scaling [kg]
   double dt_critical = 0.0;              // min over elements of L_e / c [s] (with scaled mass)
@@ -38,6 +43,7 @@ struct SolidModel {
 
   int num_nodes() const { return static_cast<int>(reference_positions.size()); }
   int num_elements() const { return static_cast<int>(elements.size()); }
+  int num_batches() const { return static_cast<int>(batches.size()); }
   bool empty() const { return elements.empty(); }
 };
 
@@ -52,6 +58,15 @@ struct SolidState {
 // what calc_solid_forces found at the current positions
 enum class SolidStatus { kOk, kInverted };
 
+// sums over one batch's elements in lane order, summed over the batches in batch order (the
+// fixed order that makes the totals independent of the thread count)
+struct SolidBatchTotals {
+  double strain_energy = 0.0;     // [J]
+  double hourglass_energy = 0.0;  // [J]
+  double plastic_work = 0.0;      // [J]
+  int inverted_element = -1;      // lowest element of the batch with det F <= 0
+};
+
 struct SolidData {
   std::vector<Eigen::Vector3d> external_force;      // applied by the owner [N], n_nodes
   std::vector<Eigen::Vector3d> prescribed_velocity; // of constrained DOFs over the step [m/s]
@@ -60,13 +75,16 @@ struct SolidData {
   std::vector<double> friction_viscosity;           // [N s/m], n_nodes (0: no friction)
   std::vector<Eigen::Vector3d> friction_normal;     // unit normal of the body, n_nodes
   std::vector<Eigen::Vector3d> friction_body_velocity;  // [m/s], n_nodes
-  std::vector<std::array<Eigen::Vector3d, kHexNodes>> element_force;  // internal [N]
+  std::vector<Hex8BatchForce> batch_force;          // internal, per batch [N]
+  std::vector<SolidBatchTotals> batch_totals;       // per batch
   std::vector<Eigen::Vector3d> internal_force;      // gathered [N], n_nodes
   std::vector<Sym6> stress;                // second Piola-Kirchhoff S [Pa], n_elements
   std::vector<double> von_mises;           // of S [Pa], n_elements
   std::vector<double> strain_energy;       // elastic, element [J], n_elements
   std::vector<double> hourglass_energy;    // [J], n_elements
-  // the plastic state the current positions produce, committed by step_solid
+  // the plastic state the current positions produce, committed by step_solid; J2 only, and
+  // written only where plastic_step is set (elsewhere the state stays as it is)
+  std::vector<uint8_t> plastic_step;       // 1: this element's plastic state changes
   std::vector<Sym6> next_plastic_strain;
   std::vector<double> next_alpha;
   std::vector<double> next_plastic_work;

@@ -100,13 +100,29 @@ SolidModel make_solid_model(std::vector<Eigen::Vector3d> nodes,
     model.inverse_mass[n] = model.nodal_mass[n] > 0.0 ? 1.0 / model.nodal_mass[n] : 0.0;
   }
 
-  // CSR incidence in ascending element order
+  // the element loop's batches
+  const int n_batches = (n_el + kBatchLanes - 1) / kBatchLanes;
+  model.batches.resize(n_batches);
+  for (int b = 0; b < n_batches; ++b) {
+    const int e0 = b * kBatchLanes;
+    model.batches[b] = make_hex8_batch(&model.elements[e0], &model.reference[e0],
+                                       std::min(kBatchLanes, n_el - e0),
+                                       model.reference_positions.data());
+  }
+
+  // CSR incidence in ascending element order, as offsets into the batched force buffers
   model.incidence_start.assign(n_nodes + 1, 0);
   for (int n = 0; n < n_nodes; ++n) model.incidence_start[n + 1] = model.incidence_start[n] + count[n];
   model.incidence.resize(model.incidence_start[n_nodes]);
   std::vector<int> fill(model.incidence_start.begin(), model.incidence_start.end() - 1);
+  constexpr int kBatchDoubles = sizeof(Hex8BatchForce) / sizeof(double);
+  static_assert(kBatchDoubles == kHexNodes * 3 * kBatchLanes, "Hex8BatchForce is unpadded");
   for (int e = 0; e < n_el; ++e) {
-    for (int a = 0; a < kHexNodes; ++a) model.incidence[fill[model.elements[e][a]]++] = e * kHexNodes + a;
+    const int b = e / kBatchLanes, lane = e % kBatchLanes;
+    for (int a = 0; a < kHexNodes; ++a) {
+      model.incidence[fill[model.elements[e][a]]++] =
+          b * kBatchDoubles + a * 3 * kBatchLanes + lane;
+    }
   }
   return model;
 }
@@ -129,12 +145,14 @@ SolidData make_solid_data(const SolidModel& model) {
   d.friction_viscosity.assign(nn, 0.0);
   d.friction_normal.assign(nn, Eigen::Vector3d::UnitY());
   d.friction_body_velocity.assign(nn, Eigen::Vector3d::Zero());
-  d.element_force.resize(ne);
+  d.batch_force.resize(model.num_batches());
+  d.batch_totals.resize(model.num_batches());
   d.internal_force.assign(nn, Eigen::Vector3d::Zero());
   d.stress.assign(ne, Sym6::Zero());
   d.von_mises.assign(ne, 0.0);
   d.strain_energy.assign(ne, 0.0);
   d.hourglass_energy.assign(ne, 0.0);
+  d.plastic_step.assign(ne, 0);
   d.next_plastic_strain.assign(ne, Sym6::Zero());
   d.next_alpha.assign(ne, 0.0);
   d.next_plastic_work.assign(ne, 0.0);

@@ -5,11 +5,6 @@
 
 namespace kneesim::engine::solid {
 
-double calc_yield_stress(const SolidMaterial& m, double alpha) {
-  const double y = m.yield_stress + m.hardening_modulus * alpha;
-  return m.yield_cap > m.yield_stress ? std::min(y, m.yield_cap) : y;
-}
-
 StressUpdate calc_stress(const SolidMaterial& m, const Sym6& strain, const Sym6& plastic_strain,
                          double alpha) {
   const double lambda = m.lame_lambda(), mu = m.shear_modulus();

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 
 namespace kneesim::engine::solid {
 
@@ -53,7 +54,10 @@ inline Eigen::Matrix3d from_voigt(const Sym6& v) {
 }
 
 // the yield stress at equivalent plastic strain `alpha` [Pa]
-double calc_yield_stress(const SolidMaterial& m, double alpha);
+inline double calc_yield_stress(const SolidMaterial& m, double alpha) {
+  const double y = m.yield_stress + m.hardening_modulus * alpha;
+  return m.yield_cap > m.yield_stress ? std::min(y, m.yield_cap) : y;
+}
 
 // result of one stress update at a material point
 struct StressUpdate {

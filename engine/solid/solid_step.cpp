@@ -1,6 +1,7 @@
 #include "engine/solid/solid_step.h"
 
 #include <Eigen/LU>
+#include <algorithm>
 
 namespace kneesim::engine::solid {
 
@@ -35,50 +36,72 @@ void calc_hex8_response(const Hex8Reference& ref, const SolidMaterial& material,
 
 void calc_solid_forces(const SolidModel& model, const SolidState& state, SolidData& data) {
   const int n_el = model.num_elements(), n_nodes = model.num_nodes();
-  // element loop: each element writes only its own buffers
+  const int n_batches = model.num_batches();
+  const bool plastic = model.material.kind == SolidMaterialKind::kJ2Plastic;
+  // element loop over batches: each batch writes only its own buffers and its elements' slots
 #pragma omp parallel for num_threads(model.threads) schedule(static)
-  for (int e = 0; e < n_el; ++e) {
-    HexPoints x;
-    for (int a = 0; a < kHexNodes; ++a) x[a] = state.position[model.elements[e][a]];
-    Hex8Response r;
-    calc_hex8_response(model.reference[e], model.material, x, state.plastic_strain[e],
-                       state.alpha[e], r);
-    data.element_force[e] = r.force;
-    data.stress[e] = r.update.stress;
-    data.von_mises[e] = calc_von_mises(r.update.stress);
-    data.next_plastic_strain[e] = r.update.plastic_strain;
-    data.next_alpha[e] = r.update.alpha;
-    data.next_plastic_work[e] = state.plastic_work[e] + r.update.plastic_work * model.reference[e].volume;
-    data.strain_energy[e] = r.strain_energy;
-    data.hourglass_energy[e] = r.hourglass_energy;
-    data.jacobian_ratio[e] = r.det_F;
+  for (int b = 0; b < n_batches; ++b) {
+    const int e0 = b * kBatchLanes, count = std::min(kBatchLanes, n_el - e0);
+    Hex8BatchResult r;
+    calc_hex8_batch(model.batches[b], model.material, state.position.data(),
+                    plastic ? &state.plastic_strain[e0] : nullptr,
+                    plastic ? &state.alpha[e0] : nullptr, count, data.batch_force[b], r);
+    SolidBatchTotals t;
+    for (int l = 0; l < count; ++l) {
+      const int e = e0 + l;
+      Sym6& stress = data.stress[e];
+      for (int v = 0; v < 6; ++v) stress[v] = r.stress[v][l];
+      data.von_mises[e] = r.von_mises[l];
+      data.strain_energy[e] = r.strain_energy[l];
+      data.hourglass_energy[e] = r.hourglass_energy[l];
+      data.jacobian_ratio[e] = r.det_F[l];
+      t.strain_energy += r.strain_energy[l];
+      t.hourglass_energy += r.hourglass_energy[l];
+      if (!(r.det_F[l] > 0.0) && t.inverted_element < 0) t.inverted_element = e;
+      if (!plastic) continue;
+      data.plastic_step[e] = r.yielded[l];
+      if (r.yielded[l]) {
+        data.next_plastic_strain[e] = r.update[l].plastic_strain;
+        data.next_alpha[e] = r.update[l].alpha;
+        data.next_plastic_work[e] =
+            state.plastic_work[e] + r.update[l].plastic_work * model.batches[b].volume[l];
+        t.plastic_work += data.next_plastic_work[e];
+      } else {
+        t.plastic_work += state.plastic_work[e];
+      }
+    }
+    data.batch_totals[b] = t;
   }
   // node loop: gather in ascending element order
+  const double* force = data.batch_force.empty() ? nullptr : data.batch_force[0].f[0][0];
 #pragma omp parallel for num_threads(model.threads) schedule(static)
   for (int n = 0; n < n_nodes; ++n) {
-    Eigen::Vector3d f = Eigen::Vector3d::Zero();
+    double fx = 0.0, fy = 0.0, fz = 0.0;
     for (int k = model.incidence_start[n]; k < model.incidence_start[n + 1]; ++k) {
-      const int id = model.incidence[k];
-      f += data.element_force[id / kHexNodes][id % kHexNodes];
+      const double* f = force + model.incidence[k];
+      fx += f[0];
+      fy += f[kBatchLanes];
+      fz += f[2 * kBatchLanes];
     }
-    data.internal_force[n] = f;
+    data.internal_force[n] = Eigen::Vector3d(fx, fy, fz);
   }
-  // serial sums in element order (deterministic) and the inversion check
+  // serial sums in batch order (deterministic) and the inversion check
   data.status = SolidStatus::kOk;
   data.inverted_element = -1;
-  double strain = 0.0, hourglass = 0.0, plastic = 0.0;
-  for (int e = 0; e < n_el; ++e) {
-    strain += data.strain_energy[e];
-    hourglass += data.hourglass_energy[e];
-    plastic += data.next_plastic_work[e];
-    if (!(data.jacobian_ratio[e] > 0.0) && data.inverted_element < 0) {
+  double strain = 0.0, hourglass = 0.0, plastic_work = 0.0;
+  for (int b = 0; b < n_batches; ++b) {
+    const SolidBatchTotals& t = data.batch_totals[b];
+    strain += t.strain_energy;
+    hourglass += t.hourglass_energy;
+    plastic_work += t.plastic_work;
+    if (t.inverted_element >= 0 && data.inverted_element < 0) {
       data.status = SolidStatus::kInverted;
-      data.inverted_element = e;
+      data.inverted_element = t.inverted_element;
     }
   }
   data.total_strain_energy = strain + hourglass;
   data.total_hourglass_energy = hourglass;
-  data.total_plastic_work = plastic;
+  data.total_plastic_work = plastic_work;
 }
 
 SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& data, double dt) {
@@ -116,12 +139,15 @@ void update_solid_nodes(const SolidModel& model, SolidState& state, SolidData& d
     state.position[n] += dt * v;
     data.nodal_kinetic_energy[n] = 0.125 * model.nodal_mass[n] * (v + v_old).squaredNorm();
   }
-  // commit the plastic state the forces were computed with
+  // commit the plastic state the forces were computed with, where it changed
+  if (model.material.kind == SolidMaterialKind::kJ2Plastic) {
 #pragma omp parallel for num_threads(model.threads) schedule(static)
-  for (int e = 0; e < n_el; ++e) {
-    state.plastic_strain[e] = data.next_plastic_strain[e];
-    state.alpha[e] = data.next_alpha[e];
-    state.plastic_work[e] = data.next_plastic_work[e];
+    for (int e = 0; e < n_el; ++e) {
+      if (!data.plastic_step[e]) continue;
+      state.plastic_strain[e] = data.next_plastic_strain[e];
+      state.alpha[e] = data.next_alpha[e];
+      state.plastic_work[e] = data.next_plastic_work[e];
+    }
   }
   double kinetic = 0.0;
   for (int n = 0; n < n_nodes; ++n) kinetic += data.nodal_kinetic_energy[n];

@@ -1,8 +1,12 @@
 // One explicit step of the deformable solid: element stresses and internal forces (one
-// OpenMP loop over elements into element-local buffers), the gather to the nodes in the
-// fixed CSR order (a second loop over nodes), and the central-difference update of the nodes
-// with their lumped masses. The result is bit-identical for any thread count: no element
-// writes to a node, and every nodal sum is taken in ascending element order. No allocation.
+// OpenMP loop over batches of kBatchLanes elements, hex8_batch.h, into batch-local force
+// buffers), the gather to the nodes in the fixed CSR order (a second loop over nodes), and
+// the central-difference update of the nodes with their lumped masses. The result is
+// bit-identical for any thread count: no element writes to a node, every nodal sum is taken
+// in ascending element order and every total in batch order. No allocation.
+//
+// calc_hex8_response is the one-element form of the same element (hex8.h's FB vectors, Eigen
+// algebra): the reference the batched kernel is tested against, not used in the step.
 #pragma once
 
 #include "engine/solid/solid.h"

@@ -1,0 +1,267 @@
+#include "engine/solid/hex8_batch.h"
+
+#include <cmath>
+#include <cstring>
+
+// the 32-byte vectors never cross a non-inlined call (every helper below is inlined into the
+// two compiled kernels), so GCC's note that their argument passing differs between AVX and
+// SSE builds does not apply
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace kneesim::engine::solid {
+namespace {
+
+constexpr int W = kBatchLanes;
+typedef double Vec __attribute__((vector_size(8 * kBatchLanes)));
+
+// h_m,a: the hourglass monomials eta zeta, zeta xi, xi eta, xi eta zeta at the nodes (+-1)
+constexpr int hourglass_sign(int m, int a) {
+  const int xi = static_cast<int>(kHexNatural[a][0]), eta = static_cast<int>(kHexNatural[a][1]),
+            zeta = static_cast<int>(kHexNatural[a][2]);
+  switch (m) {
+    case 0: return eta * zeta;
+    case 1: return zeta * xi;
+    case 2: return xi * eta;
+    default: return xi * eta * zeta;
+  }
+}
+
+inline __attribute__((always_inline)) Vec load(const double* p) {
+  Vec v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+inline __attribute__((always_inline)) void store(double* p, Vec v) {
+  __builtin_memcpy(p, &v, sizeof v);
+}
+
+// sum_a h_m,a v_a in node order: additions and subtractions only (also used at build time on
+// doubles, so that hX is formed with the rounding the kernel uses on x)
+template <class T>
+inline __attribute__((always_inline)) T signed_sum(int m, const T* v) {
+  T s = hourglass_sign(m, 0) > 0 ? v[0] : -v[0];
+  for (int a = 1; a < kHexNodes; ++a) s = hourglass_sign(m, a) > 0 ? s + v[a] : s - v[a];
+  return s;
+}
+
+template <bool kPlastic>
+inline __attribute__((always_inline)) void batch_kernel(
+    const Hex8Batch& ref, const SolidMaterial& mat, const Eigen::Vector3d* xs,
+    const Sym6* plastic_strain, const double* alpha, int count, Hex8BatchForce& force,
+    Hex8BatchResult& out) {
+  // gather the node positions lane by lane
+  Vec x[kHexNodes][3];
+  for (int a = 0; a < kHexNodes; ++a) {
+    const double* p[W];
+    for (int l = 0; l < W; ++l) p[l] = xs[ref.nodes[a][l]].data();
+    for (int i = 0; i < 3; ++i) {
+      Vec v;
+      for (int l = 0; l < W; ++l) v[l] = p[l][i];
+      x[a][i] = v;
+    }
+  }
+  // F_ij = sum_a x_a,i B_a,j
+  Vec B[kHexNodes][3];
+  for (int a = 0; a < kHexNodes; ++a)
+    for (int j = 0; j < 3; ++j) B[a][j] = load(ref.gradient[a][j]);
+  Vec F[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Vec s = x[0][i] * B[0][j];
+      for (int a = 1; a < kHexNodes; ++a) s = s + x[a][i] * B[a][j];
+      F[i][j] = s;
+    }
+  store(out.det_F, F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
+                       F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
+                       F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]));
+  // Green-Lagrange strain, Voigt xx yy zz xy yz zx: E_ij = (sum_k F_ki F_kj - delta_ij) / 2
+  constexpr int kI[6] = {0, 1, 2, 0, 1, 2}, kJ[6] = {0, 1, 2, 1, 2, 0};
+  Vec E[6];
+  for (int v = 0; v < 6; ++v) {
+    const int i = kI[v], j = kJ[v];
+    Vec c = F[0][i] * F[0][j] + F[1][i] * F[1][j] + F[2][i] * F[2][j];
+    if (v < 3) c = c - 1.0;
+    E[v] = 0.5 * c;
+  }
+  // elastic strain: E - E_p, with E_p loaded only for lanes that have yielded before
+  Vec e[6];
+  for (int v = 0; v < 6; ++v) e[v] = E[v];
+  bool any_plastic_history = false;
+  if constexpr (kPlastic) {
+    for (int l = 0; l < count; ++l) any_plastic_history |= alpha[l] != 0.0;
+    if (any_plastic_history) {
+      for (int v = 0; v < 6; ++v) {
+        Vec ep{};
+        for (int l = 0; l < count; ++l) ep[l] = plastic_strain[l][v];
+        e[v] = E[v] - ep;
+      }
+    }
+  }
+  // trial stress S = 2 mu e + lambda tr(e) I, in calc_stress's order of operations
+  const double lambda = mat.lame_lambda(), two_mu = 2.0 * mat.shear_modulus();
+  const Vec tr = e[0] + e[1] + e[2];
+  Vec S[6];
+  for (int v = 0; v < 6; ++v) S[v] = two_mu * e[v];
+  for (int v = 0; v < 3; ++v) S[v] = S[v] + lambda * tr;
+  Vec strain_energy_2;  // S : E_e (tensor contraction) per lane
+  out.yielded.fill(false);
+  if constexpr (kPlastic) {
+    // trial check on the squared deviator norm; lanes near or beyond yield take the scalar
+    // radial return (which repeats the trial with its own rounding)
+    const Vec p = (S[0] + S[1] + S[2]) / 3.0;
+    const Vec d0 = S[0] - p, d1 = S[1] - p, d2 = S[2] - p;
+    const Vec norm_sq = d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (S[3] * S[3] + S[4] * S[4] + S[5] * S[5]);
+    const double sy0 = calc_yield_stress(mat, 0.0);
+    for (int l = 0; l < count; ++l) {
+      const double sy = any_plastic_history ? calc_yield_stress(mat, alpha[l]) : sy0;
+      if (norm_sq[l] < (2.0 / 3.0) * sy * sy * (1.0 - 1e-6)) continue;
+      Sym6 strain, ep = Sym6::Zero();
+      for (int v = 0; v < 6; ++v) strain[v] = E[v][l];
+      if (any_plastic_history) ep = plastic_strain[l];
+      const double a0 = any_plastic_history ? alpha[l] : 0.0;
+      StressUpdate u = calc_stress(mat, strain, ep, a0);
+      for (int v = 0; v < 6; ++v) {
+        S[v][l] = u.stress[v];
+        e[v][l] = strain[v] - u.plastic_strain[v];
+      }
+      out.yielded[l] = u.alpha != a0 || u.plastic_strain != ep;
+      out.update[l] = u;
+    }
+  }
+  strain_energy_2 = S[0] * e[0] + S[1] * e[1] + S[2] * e[2] +
+                    2.0 * (S[3] * e[3] + S[4] * e[4] + S[5] * e[5]);
+  const Vec volume = load(ref.volume);
+  store(out.strain_energy, 0.5 * volume * strain_energy_2);
+  for (int v = 0; v < 6; ++v) store(out.stress[v], S[v]);
+  {
+    const Vec a = S[0] - S[1], b = S[1] - S[2], c = S[2] - S[0];
+    const Vec vm_sq = 0.5 * (a * a + b * b + c * c) + 3.0 * (S[3] * S[3] + S[4] * S[4] + S[5] * S[5]);
+    for (int l = 0; l < W; ++l) out.von_mises[l] = std::sqrt(vm_sq[l]);
+  }
+  // first Piola-Kirchhoff times the volume, P = V0 F S (S symmetric, full index map)
+  constexpr int kVoigt[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
+  Vec P[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      P[i][j] = volume * (F[i][0] * S[kVoigt[0][j]] + F[i][1] * S[kVoigt[1][j]] +
+                          F[i][2] * S[kVoigt[2][j]]);
+  // hourglass: q_m = (sum_a h_m,a x_a - F hX_m) / 8, kq_m = K_m q_m, G = sum_m kq_m hX_m^T
+  Vec hX[kHourglassModes][3], kq[kHourglassModes][3];
+  Vec hourglass_energy_2;
+  for (int m = 0; m < kHourglassModes; ++m) {
+    for (int j = 0; j < 3; ++j) hX[m][j] = load(ref.hourglass_moment[m][j]);
+    Vec q[3];
+    for (int i = 0; i < 3; ++i) {
+      Vec xi[kHexNodes];
+      for (int a = 0; a < kHexNodes; ++a) xi[a] = x[a][i];
+      q[i] = 0.125 * (signed_sum(m, xi) -
+                      (F[i][0] * hX[m][0] + F[i][1] * hX[m][1] + F[i][2] * hX[m][2]));
+    }
+    Vec K[6];
+    for (int v = 0; v < 6; ++v) K[v] = load(ref.hourglass_stiffness[m][v]);
+    for (int i = 0; i < 3; ++i)
+      kq[m][i] = K[kVoigt[i][0]] * q[0] + K[kVoigt[i][1]] * q[1] + K[kVoigt[i][2]] * q[2];
+    const Vec qkq = q[0] * kq[m][0] + q[1] * kq[m][1] + q[2] * kq[m][2];
+    hourglass_energy_2 = m == 0 ? qkq : hourglass_energy_2 + qkq;
+  }
+  Vec G[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      G[i][j] = kq[0][i] * hX[0][j] + kq[1][i] * hX[1][j] + kq[2][i] * hX[2][j] +
+                kq[3][i] * hX[3][j];
+  store(out.hourglass_energy, 0.5 * hourglass_energy_2);
+  // f_a = (P - G / 8) B_a + (1/8) sum_m h_m,a kq_m
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) P[i][j] = P[i][j] - 0.125 * G[i][j];
+  for (int a = 0; a < kHexNodes; ++a) {
+    for (int i = 0; i < 3; ++i) {
+      Vec h = hourglass_sign(0, a) > 0 ? kq[0][i] : -kq[0][i];
+      for (int m = 1; m < kHourglassModes; ++m) h = hourglass_sign(m, a) > 0 ? h + kq[m][i] : h - kq[m][i];
+      store(force.f[a][i], P[i][0] * B[a][0] + P[i][1] * B[a][1] + P[i][2] * B[a][2] + 0.125 * h);
+    }
+  }
+}
+
+template <bool kPlastic>
+void kernel_baseline(const Hex8Batch& ref, const SolidMaterial& mat, const Eigen::Vector3d* x,
+                     const Sym6* ep, const double* alpha, int count, Hex8BatchForce& force,
+                     Hex8BatchResult& out) {
+  batch_kernel<kPlastic>(ref, mat, x, ep, alpha, count, force, out);
+}
+
+template <bool kPlastic>
+__attribute__((target("avx2"))) void kernel_avx2(const Hex8Batch& ref, const SolidMaterial& mat,
+                                                 const Eigen::Vector3d* x, const Sym6* ep,
+                                                 const double* alpha, int count,
+                                                 Hex8BatchForce& force, Hex8BatchResult& out) {
+  batch_kernel<kPlastic>(ref, mat, x, ep, alpha, count, force, out);
+}
+
+bool detect_avx2() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2");
+}
+const bool kHasAvx2 = detect_avx2();
+
+}  // namespace
+
+bool hex8_batch_has_avx2() { return kHasAvx2; }
+
+Hex8Batch make_hex8_batch(const std::array<int, kHexNodes>* element_nodes,
+                          const Hex8Reference* reference, int count, const Eigen::Vector3d* X) {
+  Hex8Batch b;
+  std::memset(&b, 0, sizeof b);
+  for (int l = 0; l < W; ++l) {
+    const int src = l < count ? l : 0;
+    for (int a = 0; a < kHexNodes; ++a) b.nodes[a][l] = element_nodes[src][a];
+    if (l >= count) continue;  // padding: zero data, zero force
+    HexPoints P;
+    for (int a = 0; a < kHexNodes; ++a) P[a] = X[element_nodes[l][a]];
+    const Hex8Reference& r = reference[l];
+    b.volume[l] = r.volume;
+    for (int a = 0; a < kHexNodes; ++a)
+      for (int j = 0; j < 3; ++j) b.gradient[a][j][l] = r.gradient(a, j);
+    for (int m = 0; m < kHourglassModes; ++m) {
+      for (int j = 0; j < 3; ++j) {
+        double c[kHexNodes];
+        for (int a = 0; a < kHexNodes; ++a) c[a] = P[a][j];
+        b.hourglass_moment[m][j][l] = signed_sum(m, c);
+      }
+      const Eigen::Matrix3d& K = r.hourglass_stiffness[m];
+      const double k[6] = {K(0, 0), K(1, 1), K(2, 2), K(0, 1), K(1, 2), K(2, 0)};
+      for (int v = 0; v < 6; ++v) b.hourglass_stiffness[m][v][l] = k[v];
+    }
+  }
+  return b;
+}
+
+void calc_hex8_batch_baseline(const Hex8Batch& ref, const SolidMaterial& material,
+                              const Eigen::Vector3d* x, const Sym6* plastic_strain,
+                              const double* alpha, int count, Hex8BatchForce& force,
+                              Hex8BatchResult& out) {
+  if (material.kind == SolidMaterialKind::kJ2Plastic)
+    kernel_baseline<true>(ref, material, x, plastic_strain, alpha, count, force, out);
+  else
+    kernel_baseline<false>(ref, material, x, plastic_strain, alpha, count, force, out);
+}
+
+void calc_hex8_batch_avx2(const Hex8Batch& ref, const SolidMaterial& material,
+                          const Eigen::Vector3d* x, const Sym6* plastic_strain,
+                          const double* alpha, int count, Hex8BatchForce& force,
+                          Hex8BatchResult& out) {
+  if (material.kind == SolidMaterialKind::kJ2Plastic)
+    kernel_avx2<true>(ref, material, x, plastic_strain, alpha, count, force, out);
+  else
+    kernel_avx2<false>(ref, material, x, plastic_strain, alpha, count, force, out);
+}
+
+void calc_hex8_batch(const Hex8Batch& ref, const SolidMaterial& material,
+                     const Eigen::Vector3d* x, const Sym6* plastic_strain, const double* alpha,
+                     int count, Hex8BatchForce& force, Hex8BatchResult& out) {
+  if (kHasAvx2)
+    calc_hex8_batch_avx2(ref, material, x, plastic_strain, alpha, count, force, out);
+  else
+    calc_hex8_batch_baseline(ref, material, x, plastic_strain, alpha, count, force, out);
+}
+
+}  // namespace kneesim::engine::solid

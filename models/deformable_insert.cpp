@@ -1,6 +1,8 @@
 #include "models/deformable_insert.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "engine/errors.h"
 #include "engine/solid/solid_build.h"
@@ -71,6 +73,125 @@ void attach_deformable_insert(const Config& c, BuiltModel& built) {
     m.dt = m.period / steps;
   }
   m.dt_critical = std::min(m.dt_critical, m.insert_solid.dt_critical);
+}
+
+}  // namespace kneesim::models
+
+namespace kneesim::models {
+namespace {
+
+// nodes per column of the structured insert mesh (base node first, top node last)
+int column_nodes(const engine::Model& m) {
+  const int n = m.insert_solid.num_nodes(), columns = static_cast<int>(m.insert_base_nodes.size());
+  if (columns == 0 || n % columns != 0) {
+    throw std::logic_error("deformable insert: the mesh is not made of whole columns");
+  }
+  return n / columns;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector3d> calc_top_node_normals(const engine::Model& m,
+                                                   const std::vector<Eigen::Vector3d>& x) {
+  const engine::solid::SurfaceContact& c = m.insert_contact;
+  std::vector<Eigen::Vector3d> by_node(x.size(), Eigen::Vector3d::Zero());
+  for (const auto& q : m.insert_top_faces) {
+    // the quad's area-weighted normal: half the cross product of its diagonals
+    const Eigen::Vector3d n = 0.5 * (x[q[2]] - x[q[0]]).cross(x[q[3]] - x[q[1]]);
+    for (int a = 0; a < 4; ++a) by_node[q[a]] += n;
+  }
+  std::vector<Eigen::Vector3d> normal(c.size());
+  for (int i = 0; i < c.size(); ++i) {
+    const Eigen::Vector3d& n = by_node[c.nodes[i]];
+    normal[i] = n.norm() > 0.0 ? Eigen::Vector3d(n.normalized()) : Eigen::Vector3d::UnitY();
+  }
+  return normal;
+}
+
+std::vector<Eigen::Vector3d> recede_insert_columns(const engine::Model& pristine,
+                                                   const std::vector<Eigen::Vector3d>& nodes,
+                                                   const std::vector<Eigen::Vector3d>& normal,
+                                                   const std::vector<double>& depth) {
+  const engine::solid::SurfaceContact& c = pristine.insert_contact;
+  const std::vector<Eigen::Vector3d>& X0 = pristine.insert_solid.reference_positions;
+  const int per_column = column_nodes(pristine);
+  std::vector<Eigen::Vector3d> out = nodes;
+  for (int i = 0; i < c.size(); ++i) {
+    const int top = c.nodes[i], base = top - (per_column - 1);
+    const Eigen::Vector3d new_top = nodes[top] - depth[i] * normal[i];
+    const double h0 = X0[top].y() - X0[base].y();
+    for (int k = base + 1; k < top; ++k) {
+      const double s = (X0[k].y() - X0[base].y()) / h0;  // pristine layer fraction
+      out[k] = nodes[base] + s * (new_top - nodes[base]);
+    }
+    out[top] = new_top;
+  }
+  return out;
+}
+
+int count_collapsed_elements(const engine::Model& pristine, const std::vector<Eigen::Vector3d>& x) {
+  const engine::solid::SolidModel& s = pristine.insert_solid;
+  int bad = 0;
+  for (int e = 0; e < s.num_elements(); ++e) {
+    engine::solid::HexPoints p;
+    for (int a = 0; a < engine::solid::kHexNodes; ++a) p[a] = x[s.elements[e][a]];
+    const auto j = engine::solid::calc_corner_jacobians(p);
+    if (*std::min_element(j.begin(), j.end()) <= 0.01 * s.reference[e].min_jacobian) ++bad;
+  }
+  return bad;
+}
+
+double calc_hex_volume(const engine::Model& m, const std::vector<Eigen::Vector3d>& x) {
+  // V = int det J over the element: the 2x2x2 Gauss rule is exact for the trilinear hex
+  const engine::solid::SolidModel& s = m.insert_solid;
+  const double g = 1.0 / std::sqrt(3.0);
+  double volume = 0.0;
+  for (int e = 0; e < s.num_elements(); ++e) {
+    for (int q = 0; q < engine::solid::kHexNodes; ++q) {
+      const auto& xi = engine::solid::kHexNatural[q];
+      Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+      for (int a = 0; a < engine::solid::kHexNodes; ++a) {
+        const auto& na = engine::solid::kHexNatural[a];
+        const double r = 1 + na[0] * g * xi[0], t = 1 + na[1] * g * xi[1],
+                     u = 1 + na[2] * g * xi[2];
+        const Eigen::Vector3d dN(0.125 * na[0] * t * u, 0.125 * na[1] * r * u,
+                                 0.125 * na[2] * r * t);
+        J += x[s.elements[e][a]] * dN.transpose();
+      }
+      volume += J.determinant();
+    }
+  }
+  return volume;
+}
+
+void apply_worn_deformable_insert(const engine::Model& pristine, double dt_safety,
+                                  const std::vector<Eigen::Vector3d>& worn,
+                                  engine::Model& m, engine::State* state) {
+  const engine::solid::SolidModel& s0 = pristine.insert_solid;
+  engine::solid::SolidOptions options;
+  // every element of a mass-scaled insert was raised to the target step, so the pristine
+  // limit is the target; an unscaled insert keeps its physical mass
+  options.mass_scaling_dt = s0.added_mass > 0.0 ? s0.dt_critical : 0.0;
+  options.damping_alpha = s0.damping_alpha;
+  options.threads = s0.threads;
+  const std::vector<Eigen::Vector3d> before = m.insert_solid.reference_positions;
+  m.insert_solid = engine::solid::make_solid_model(worn, s0.elements, s0.material, options,
+                                                   s0.constraint);
+  m.insert_contact = engine::solid::make_surface_contact(
+      m.insert_solid, pristine.insert_top_faces, pristine.insert_top_face_element,
+      pristine.insert_contact.friction, pristine.insert_contact.slip_regularization);
+  // the scaled limit reproduces the target to rounding: shorten the step only for more
+  const double dt_solid = dt_safety * m.insert_solid.dt_critical;
+  if (dt_solid < m.dt * (1.0 - 1e-9)) {
+    const long steps = static_cast<long>(std::ceil(m.period / dt_solid));
+    m.dt = m.period / steps;
+  }
+  m.dt_critical = std::min(pristine.dt_critical, m.insert_solid.dt_critical);
+  // the displacement field carries over onto the worn reference
+  if (!state) return;
+  for (size_t n = 0; n < worn.size(); ++n) {
+    state->insert_solid.position[n] = worn[n] + (state->insert_solid.position[n] - before[n]);
+  }
 }
 
 }  // namespace kneesim::models

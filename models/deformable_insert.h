@@ -11,6 +11,9 @@
 // see the contact forces averaged over the substeps of a pose it holds fixed.
 #pragma once
 
+#include <vector>
+
+#include "engine/state.h"
 #include "models/build_model.h"
 
 namespace kneesim::models {
@@ -24,5 +27,43 @@ engine::solid::SolidMaterial make_insert_solid_material(const Config& config);
 // rigid law's static overlap removed); throws InputError for bad input (mesh options, an
 // element inverted at the start, a material out of range)
 void attach_deformable_insert(const Config& config, BuiltModel& built);
+
+// Wear of the deformable insert (issue 11 item 4; wear/worn_insert.h drives it). The geometry
+// that wears is the solid's reference configuration: the top nodes recede along the surface
+// normal and each column of the structured mesh (its base node, the interior nodes, its top
+// node: consecutive node ids, models/hex_mesh.h) is re-graded between its fixed base node and
+// its new top node with the pristine layer fractions, so the interior follows the surface and
+// the grading towards the surface is kept. Rejected: moving the top nodes only (the top layer
+// alone would thin, inverting first) and a Laplacian smoothing of the interior (iterative, and
+// the columns give the exact answer).
+
+// unit normals of the top-surface contact nodes (model.insert_contact order) at the given
+// reference node positions, area-weighted over the top quads around each node (+y up)
+std::vector<Eigen::Vector3d> calc_top_node_normals(const engine::Model& model,
+                                                   const std::vector<Eigen::Vector3d>& nodes);
+
+// the nodes of `nodes` after each top node i (model.insert_contact.nodes[i]) moved by
+// depth[i] [m] along -normal[i], every column re-graded with the layer fractions of the
+// pristine model's column
+std::vector<Eigen::Vector3d> recede_insert_columns(const engine::Model& pristine,
+                                                   const std::vector<Eigen::Vector3d>& nodes,
+                                                   const std::vector<Eigen::Vector3d>& normal,
+                                                   const std::vector<double>& depth);
+
+// elements inverted or collapsed at the given nodes: smallest corner Jacobian at or below
+// 1 % of the same element's in the pristine model (the rigid path's 1 % face-area rule)
+int count_collapsed_elements(const engine::Model& pristine, const std::vector<Eigen::Vector3d>& nodes);
+
+// volume of the insert's hex mesh at the given node positions [m^3]
+double calc_hex_volume(const engine::Model& model, const std::vector<Eigen::Vector3d>& nodes);
+
+// `model`'s deformable insert rebuilt on the worn reference nodes: element geometry, lumped mass
+// (mass-scaled to the pristine target step), top-node areas and penalty stiffnesses; material,
+// constraints, friction and the rig are the pristine model's; the time step is shortened only
+// if the worn solid's limit requires it. `state` (if not null) moves onto the new reference
+// with its displacements, velocities and plastic state (x' = X' + (x - X)).
+void apply_worn_deformable_insert(const engine::Model& pristine, double dt_safety,
+                                  const std::vector<Eigen::Vector3d>& worn_nodes,
+                                  engine::Model& model, engine::State* state);
 
 }  // namespace kneesim::models

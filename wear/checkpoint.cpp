@@ -13,7 +13,8 @@
 namespace kneesim::wear {
 namespace {
 
-constexpr char kMagic[16] = "kneesim-wear-v2";
+// v3: records of 16 fields and the deformable insert's state
+constexpr char kMagic[16] = "kneesim-wear-v3";
 
 class Writer {
  public:
@@ -144,6 +145,19 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& c) {
     frame_fields(const_cast<engine::Frame&>(f), d, true);
     w.put_doubles(d.data(), d.size());
   }
+  // the deformable insert's nodes and plastic state (empty lists for the rigid insert)
+  const engine::solid::SolidState& solid = c.state.insert_solid;
+  w.put(static_cast<uint64_t>(solid.position.size()));
+  for (size_t n = 0; n < solid.position.size(); ++n) {
+    w.put_doubles(solid.position[n].data(), 3);
+    w.put_doubles(solid.velocity[n].data(), 3);
+  }
+  w.put(static_cast<uint64_t>(solid.alpha.size()));
+  for (size_t e = 0; e < solid.alpha.size(); ++e) {
+    w.put_doubles(solid.plastic_strain[e].data(), 6);
+    w.put(solid.alpha[e]);
+    w.put(solid.plastic_work[e]);
+  }
   const uint64_t hash = fnv1a(w.bytes().data(), w.bytes().size());
   w.put(hash);
   io::write_file_atomic(path, w.bytes());
@@ -199,6 +213,23 @@ Checkpoint read_checkpoint(const std::filesystem::path& path, uint64_t expected_
     std::array<double, kFrameDoubles> d;
     r.get_doubles(d.data(), d.size());
     if (!frame_fields(f, d, false)) r.corrupt("a frame's element count is out of range");
+  }
+  engine::solid::SolidState& solid = c.state.insert_solid;
+  const size_t nodes = r.count(bytes.size() / (6 * sizeof(double)));
+  solid.position.resize(nodes);
+  solid.velocity.resize(nodes);
+  for (size_t n = 0; n < nodes; ++n) {
+    r.get_doubles(solid.position[n].data(), 3);
+    r.get_doubles(solid.velocity[n].data(), 3);
+  }
+  const size_t elements = r.count(bytes.size() / (8 * sizeof(double)));
+  solid.plastic_strain.resize(elements);
+  solid.alpha.resize(elements);
+  solid.plastic_work.resize(elements);
+  for (size_t e = 0; e < elements; ++e) {
+    r.get_doubles(solid.plastic_strain[e].data(), 6);
+    solid.alpha[e] = r.get<double>();
+    solid.plastic_work[e] = r.get<double>();
   }
   return c;
 }

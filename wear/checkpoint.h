@@ -1,6 +1,6 @@
-// Checkpoint of a wear run: everything needed to continue bit-identically (the engine State,
-// the worn insert's vertices, the cumulative depth field, the records so far, the position in
-// the schedule) in one binary file written atomically, ending with an FNV-1a hash of its
+// Checkpoint of a wear run: everything needed to continue bit-identically (the engine State
+// with a deformable insert's nodes and plastic state, the worn insert's vertices or hex nodes,
+// the cumulative depth field, the records so far, the position in the schedule) in one binary file written atomically, ending with an FNV-1a hash of its
 // content. A checkpoint whose hash, magic, size or run identity does not match is rejected
 // with a clear error: never silently used.
 #pragma once
@@ -21,8 +21,9 @@ struct Checkpoint {
   int next_update = 0;                    // index of the next update
   double dt = 0.0;                        // time step reached by the run [s]
   engine::State state;
-  std::vector<Eigen::Vector3d> insert_vertices;  // [m]
-  std::vector<double> vertex_depth;        // cumulative per articular vertex [m]
+  std::vector<Eigen::Vector3d> insert_vertices;  // worn insert mesh vertices or (deformable)
+                                                 // hex node reference positions [m]
+  std::vector<double> vertex_depth;        // cumulative per wear site [m]
   std::vector<UpdateRecord> records;
   std::vector<engine::Frame> frames;       // kinematics of the last simulated cycle
 };

@@ -14,24 +14,41 @@ void WearAccumulator::observe(const engine::Model& model, const engine::State&,
                               const engine::Data& data) {
   const double dt = model.dt;
   for (int e : data.in_contact) {
-    const double p = data.pressure[e];
-    const double ds = data.slip_speed[e] * dt;
-    if (p <= 0.0 || ds <= 0.0) continue;
-    // the pressure-dependent law weights each step by (p / p_ref)^-alpha
-    const double weight = params_.law == WearLaw::kPressureDependent
-                              ? std::pow(p / params_.p_ref, -params_.alpha)
-                              : 1.0;
-    depth_[e] += weight * p * ds;
-    const Eigen::Vector3d& v = data.slip_velocity_T[e];
-    const double vx = v.x(), vz = v.z(), v2 = vx * vx + vz * vz;
-    if (v2 > 0.0) {
-      const double w = p * ds / v2;
-      wxx_[e] += w * vx * vx;
-      wxz_[e] += w * vx * vz;
-      wzz_[e] += w * vz * vz;
-    }
-    work_ += p * model.insert.area[e] * ds;
+    add(e, data.pressure[e], data.slip_speed[e] * dt, data.slip_velocity_T[e],
+        model.insert.area[e]);
   }
+}
+
+void WearAccumulator::observe_nodes(const engine::Model& model, const engine::State&,
+                                    const engine::Data& data) {
+  const double dt = model.dt;
+  const engine::solid::SurfaceContactData& c = data.insert_contact;
+  for (int i = 0; i < model.insert_contact.size(); ++i) {
+    // the friction on the node opposes its slip against the femur (engine/insert_solid.h):
+    // its direction is the slip direction the cross-shear tensor needs
+    const Eigen::Vector3d& f = c.friction_force[i];
+    const double fn = f.norm();
+    const Eigen::Vector3d v = fn > 0.0 ? Eigen::Vector3d(-c.slip_speed[i] / fn * f)
+                                       : Eigen::Vector3d::Zero();
+    add(i, c.pressure[i], c.slip_speed[i] * dt, v, model.insert_contact.area[i]);
+  }
+}
+
+void WearAccumulator::add(int e, double p, double ds, const Eigen::Vector3d& v, double area) {
+  if (!(p > 0.0) || !(ds > 0.0)) return;
+  // the pressure-dependent law weights each step by (p / p_ref)^-alpha
+  const double weight =
+      params_.law == WearLaw::kPressureDependent ? std::pow(p / params_.p_ref, -params_.alpha)
+                                                 : 1.0;
+  depth_[e] += weight * p * ds;
+  const double vx = v.x(), vz = v.z(), v2 = vx * vx + vz * vz;
+  if (v2 > 0.0) {
+    const double w = p * ds / v2;
+    wxx_[e] += w * vx * vx;
+    wxz_[e] += w * vx * vz;
+    wzz_[e] += w * vz * vz;
+  }
+  work_ += p * area * ds;
 }
 
 std::vector<double> WearAccumulator::cross_shear_ratio() const {

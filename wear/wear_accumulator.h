@@ -1,7 +1,9 @@
-// Accumulates Archard wear depth per insert articular element over the time steps of a
-// simulated cycle: an observer of engine::simulate (it reads Data, never writes the Model).
-// Depth per element is later spread to vertices (wear/geometry_update.h) with area weights,
-// which keeps the volume sum_e depth_e A_e unchanged.
+// Accumulates Archard wear depth per contact site over the time steps of a simulated cycle: an
+// observer of engine::simulate (it reads Data, never writes the Model). The sites are the
+// rigid insert's articular elements (observe: depth per element, later spread to vertices
+// with area weights by wear/geometry_update.h, which keeps the volume sum_e depth_e A_e) or
+// the deformable insert's top-surface nodes (observe_nodes: depth per node, with the node's
+// penalty pressure, slip and tributary area; no spreading needed).
 #pragma once
 
 #include <vector>
@@ -43,6 +45,9 @@ class WearAccumulator {
   WearAccumulator(int n_elements, WearLawParams params);
   // engine::RunOptions::observer: adds this step's increments of the elements in contact
   void observe(const engine::Model& model, const engine::State& state, const engine::Data& data);
+  // the same for the deformable insert's top nodes (sites in model.insert_contact order)
+  void observe_nodes(const engine::Model& model, const engine::State& state,
+                     const engine::Data& data);
   // depth per element accumulated over the observed cycle [m], n_elements
   std::vector<double> depth_per_cycle() const;
   // cross-shear ratio per element over the cycle [-] (0 for unidirectional sliding)
@@ -50,9 +55,13 @@ class WearAccumulator {
   double sliding_work() const { return work_; }  // sum of p A ds over the cycle [J]
 
  private:
+  // one site's step: pressure p [Pa], slip ds [m] along the slip velocity v (T frame) [m/s],
+  // over the site's area [m^2]
+  void add(int site, double p, double ds, const Eigen::Vector3d& v, double area);
+
   WearLawParams params_;
-  std::vector<double> depth_;      // Archard-weighted p ds, per element [m]
-  // frictional-work tensor per element (x-z plane of T): sum of w v v^T / |v|^2 with
+  std::vector<double> depth_;      // Archard-weighted p ds, per site [Pa m]
+  // frictional-work tensor per site (x-z plane of T): sum of w v v^T / |v|^2 with
   // w = p ds, from which the principal direction and cross-shear follow (Kang 2008)
   std::vector<double> wxx_, wxz_, wzz_;
   double work_ = 0.0;

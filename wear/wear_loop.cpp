@@ -10,6 +10,7 @@
 #include "engine/io/atomic_file.h"
 #include "wear/checkpoint.h"
 #include "wear/geometry_update.h"
+#include "wear/worn_insert.h"
 
 namespace kneesim::wear {
 namespace {
@@ -36,18 +37,19 @@ void fill_cycle_figures(const std::vector<engine::Frame>& frames, UpdateRecord& 
   r.mean_peak_pressure = n ? peaks / n : 0.0;
 }
 
-// volumes and depths of the cumulative depth field against the unworn mesh
-void fill_wear_figures(const engine::InsertSurface& surface, const std::vector<double>& depth,
-                       double volume0, const models::TriMesh& worn, UpdateRecord& r) {
-  const std::vector<double> area = vertex_areas(surface);
+// volumes and depths of the cumulative depth field (per wear site, pristine tributary areas)
+// against the unworn geometry
+void fill_wear_figures(const std::vector<Eigen::Vector3d>& sites, const std::vector<double>& area,
+                       const std::vector<double>& depth, double volume0, double volume,
+                       UpdateRecord& r) {
   r.volume_depth = r.medial_volume = r.lateral_volume = r.max_depth = 0.0;
   for (size_t v = 0; v < depth.size(); ++v) {
     const double dv = depth[v] * area[v];
     r.volume_depth += dv;
-    (surface.vertices_T[v].z() < 0.0 ? r.medial_volume : r.lateral_volume) += dv;
+    (sites[v].z() < 0.0 ? r.medial_volume : r.lateral_volume) += dv;
     r.max_depth = std::max(r.max_depth, depth[v]);
   }
-  r.volume = volume0 - models::enclosed_volume(worn);
+  r.volume = volume0 - volume;
 }
 
 }  // namespace
@@ -55,10 +57,14 @@ void fill_wear_figures(const engine::InsertSurface& surface, const std::vector<d
 std::string check_update_record(const UpdateRecord& r, bool closed_insert) {
   const double fields[] = {r.volume,       r.volume_depth,  r.max_depth,
                            r.medial_volume, r.lateral_volume, r.contact_area,
-                           r.peak_pressure, r.mean_peak_pressure, r.ap_rom, r.ie_rom};
+                           r.peak_pressure, r.mean_peak_pressure, r.ap_rom, r.ie_rom,
+                           r.von_mises_surface, r.von_mises_subsurface,
+                           r.plastic_strain_surface, r.plastic_strain_subsurface};
   const char* names[] = {"volume",       "volume_depth",  "max_depth",
                          "medial_volume", "lateral_volume", "contact_area",
-                         "peak_pressure", "mean_peak_pressure", "ap_rom", "ie_rom"};
+                         "peak_pressure", "mean_peak_pressure", "ap_rom", "ie_rom",
+                         "von_mises_surface", "von_mises_subsurface",
+                         "plastic_strain_surface", "plastic_strain_subsurface"};
   const long cycles = static_cast<long>(r.cycles);
   for (size_t i = 0; i < std::size(fields); ++i) {
     if (!std::isfinite(fields[i])) {
@@ -84,34 +90,32 @@ std::string check_update_record(const UpdateRecord& r, bool closed_insert) {
 
 namespace {
 
-// first articular vertex whose height above the base fell below 10 % of its pristine height,
-// or -1
-int find_worn_through_vertex(const models::BuiltModel& pristine, const models::TriMesh& worn) {
-  const auto& map = pristine.implant.articular_vertex_to_insert;
-  for (size_t v = 0; v < map.size(); ++v) {
-    const double h0 = pristine.implant.insert.vertices[map[v]].y();
-    if (worn.vertices[map[v]].y() < 0.1 * h0) return static_cast<int>(v);
-  }
-  return -1;
-}
-
 // stability ratio above which the next update gets a shorter step
 constexpr double kStabilityHeadroom = 0.9;
 
 // one gait cycle on the current geometry from `state` (advanced on success); wear makes the
 // insert more conforming and the contact stiffer, so when the stability monitor trips the cycle
 // is repeated with the step the measured frequency allows, and a cycle close to the limit
-// shortens the step of the next one. `acc` (may be null) accumulates the cycle's wear depth.
+// shortens the step of the next one. `acc` (may be null) accumulates the cycle's wear depth;
+// `von_mises_max` (deformable insert) receives each element's largest von Mises stress [Pa].
 engine::RunResult simulate_cycle(engine::Model& model, engine::State& state, double dt_safety,
-                                 const WearLawParams& law, WearAccumulator* acc) {
+                                 const WearLawParams& law, WearAccumulator* acc,
+                                 std::vector<double>& von_mises_max) {
   engine::RunOptions ro;
   ro.cycles = 1;
-  std::function<void()> reset;
-  if (acc) {
-    ro.observer = [acc](const engine::Model& m, const engine::State& s,
-                        const engine::Data& d) { acc->observe(m, s, d); };
-    reset = [acc, &model, &law] { *acc = WearAccumulator(model.insert.size(), law); };
-  }
+  const bool solid = !model.insert_solid.empty();
+  von_mises_max.assign(model.insert_solid.num_elements(), 0.0);
+  ro.observer = [acc, solid, &von_mises_max](const engine::Model& m, const engine::State& s,
+                                            const engine::Data& d) {
+    if (acc) observe_wear(*acc, m, s, d);
+    if (!solid) return;
+    const std::vector<double>& vm = d.insert_solid.von_mises;
+    for (size_t e = 0; e < vm.size(); ++e) von_mises_max[e] = std::max(von_mises_max[e], vm[e]);
+  };
+  const std::function<void()> reset = [acc, &model, &law, &von_mises_max] {
+    if (acc) *acc = make_accumulator(model, law);
+    std::fill(von_mises_max.begin(), von_mises_max.end(), 0.0);
+  };
   const engine::RunResult run = engine::simulate_with_retry(model, state, ro, dt_safety, 4, reset);
   if (run.status == engine::StepStatus::kOk && run.max_stability_ratio > kStabilityHeadroom) {
     model.dt = engine::find_whole_cycle_step(
@@ -121,11 +125,32 @@ engine::RunResult simulate_cycle(engine::Model& model, engine::State& state, dou
   return run;
 }
 
+// the deformable insert's stress and plastic-strain maxima of a cycle, surface layer (the
+// elements under the top faces) and subsurface, into the record
+void fill_solid_figures(const engine::Model& model, const engine::State& state,
+                        const std::vector<double>& von_mises_max, UpdateRecord& r) {
+  const int n = model.insert_solid.num_elements();
+  std::vector<unsigned char> surface(n, 0);
+  for (int e : model.insert_top_face_element) surface[e] = 1;
+  r.von_mises_surface = r.von_mises_subsurface = 0.0;
+  r.plastic_strain_surface = r.plastic_strain_subsurface = 0.0;
+  for (int e = 0; e < n; ++e) {
+    double& vm = surface[e] ? r.von_mises_surface : r.von_mises_subsurface;
+    double& ep = surface[e] ? r.plastic_strain_surface : r.plastic_strain_subsurface;
+    vm = std::max(vm, von_mises_max[e]);
+    ep = std::max(ep, state.insert_solid.alpha[e]);
+  }
+}
+
 // the last record gets the figures of a cycle simulated on its geometry and is complete
-void complete_record(const std::vector<engine::Frame>& frames, WearResult& result,
-                     const std::vector<double>& depth, const WearOptions& o) {
-  fill_cycle_figures(frames, result.records.back());
-  result.frames = frames;
+void complete_record(const engine::RunResult& run, const engine::Model& model,
+                     const engine::State& state, const std::vector<double>& von_mises_max,
+                     WearResult& result, const std::vector<double>& depth, const WearOptions& o) {
+  fill_cycle_figures(run.frames, result.records.back());
+  if (!model.insert_solid.empty()) {
+    fill_solid_figures(model, state, von_mises_max, result.records.back());
+  }
+  result.frames = run.frames;
   if (o.on_update) o.on_update(result.records, depth);
 }
 }  // namespace
@@ -138,34 +163,38 @@ long update_interval(const WearOptions& o, int u) {
 WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
   WearResult result;
   engine::Model model = pristine.model;
-  const engine::InsertSurface& surface0 = pristine.model.insert;
-  const double volume0 = models::enclosed_volume(pristine.implant.insert);
-  const bool closed_insert = pristine.implant.insert_volume > 0.0;
-  models::TriMesh insert = pristine.implant.insert;
-  std::vector<double> depth(surface0.vertices_T.size(), 0.0);
+  const std::vector<Eigen::Vector3d> sites0 = find_site_positions(pristine);
+  const std::vector<double> areas0 = calc_site_areas(pristine);
+  WornInsert insert = make_pristine_insert(pristine);
+  const double volume0 = calc_insert_volume(pristine, insert);
+  // the deformable insert's hex mesh is closed by construction
+  const bool closed_insert =
+      insert.kind == InsertKind::kDeformable || pristine.implant.insert_volume > 0.0;
+  std::vector<double> depth(sites0.size(), 0.0);
   engine::State state = engine::make_initial_state(model);
+  std::vector<double> von_mises_max;  // per element over the last cycle (deformable) [Pa]
   long cycles_done = 0;
   int u = 0;
 
   if (o.resume) {
     const Checkpoint c = read_checkpoint(o.checkpoint, o.identity);
-    if (c.insert_vertices.size() != insert.vertices.size() ||
-        c.vertex_depth.size() != depth.size()) {
+    if (c.insert_vertices.size() != insert.points.size() || c.vertex_depth.size() != depth.size() ||
+        c.state.insert_solid.position.size() != state.insert_solid.position.size()) {
       throw InputError(o.checkpoint.string() + ": the checkpoint holds an insert of " +
                        std::to_string(c.insert_vertices.size()) + " vertices, the model has " +
-                       std::to_string(insert.vertices.size()) + "; it belongs to another "
+                       std::to_string(insert.points.size()) + "; it belongs to another "
                        "implant or mesh: delete it or run without --resume");
     }
     cycles_done = c.cycles_done;
     u = c.next_update;
-    state = c.state;
-    insert.vertices = c.insert_vertices;
+    state = c.state;  // a deformable insert's nodes are already on the worn reference
+    insert.points = c.insert_vertices;
     depth = c.vertex_depth;
     result.records = c.records;
     result.frames = c.frames;
     result.resumed_from_update = u;
     model.dt = c.dt;  // the step the run had adapted to (wear makes the contact stiffer)
-    model.insert = models::make_worn_insert_surface(pristine, insert);
+    apply_worn_insert(pristine, insert, model, nullptr);
   } else {
     // a settling cycle from rest brings the carriages into their periodic motion; its
     // kinematics are not those of a settled cycle (the AP range differs by about 5 %), so it is
@@ -188,55 +217,54 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
 
   while (cycles_done < o.total_cycles) {
     // one cycle on the current geometry, accumulating the per-cycle depth
-    WearAccumulator acc(model.insert.size(), o.law);
-    const engine::RunResult run = simulate_cycle(model, state, pristine.dt_safety, o.law, &acc);
+    WearAccumulator acc = make_accumulator(model, o.law);
+    const engine::RunResult run =
+        simulate_cycle(model, state, pristine.dt_safety, o.law, &acc, von_mises_max);
     if (run.status != engine::StepStatus::kOk) {
       result.status = run.status;
       result.message = engine::to_string(run.status);
       break;
     }
     // the cycle's kinematics and contact describe the geometry it ran on: the last record's
-    complete_record(run.frames, result, depth, o);
-    const std::vector<double> per_cycle = spread_to_vertices(model.insert, acc.depth_per_cycle());
+    complete_record(run, model, state, von_mises_max, result, depth, o);
+    const std::vector<double> per_cycle = calc_site_depth(model, acc);
 
-    // scale by the cycles of this update; halve them while a face would invert
+    // scale by the cycles of this update; halve them while a face or element would fold
     long interval = std::min(update_interval(o, u), o.total_cycles - cycles_done);
-    const std::vector<Eigen::Vector3d> normals = articular_vertex_normals(model.insert);
-    RecessionResult rec;
+    const std::vector<Eigen::Vector3d> normals = calc_site_normals(model);
+    InsertRecession rec;
     int refinements = 0;
     for (;;) {
       std::vector<double> step_depth(per_cycle.size());
       const double n_eff = effective_cycles(o.law, static_cast<double>(cycles_done), interval);
       for (size_t v = 0; v < per_cycle.size(); ++v) step_depth[v] = per_cycle[v] * n_eff;
-      rec = recede(insert, pristine.implant.articular_vertex_to_insert, normals, step_depth);
-      // against the pristine insert too: a face may also turn over a little per update
-      rec.inverted_faces =
-          std::max(rec.inverted_faces, count_inverted_faces(pristine.implant.insert, rec.insert));
-      if (rec.inverted_faces == 0 || interval <= 1) break;
+      rec = recede_insert(pristine, insert, normals, step_depth);
+      if (rec.folds == 0 || interval <= 1) break;
       interval = std::max(1L, interval / 2);
       ++refinements;
     }
-    // an elastic layer worn down to a tenth of its height has worn through: the foundation
-    // model (and the insert) no longer hold, and no interval refinement changes the outcome
-    if (const int v = find_worn_through_vertex(pristine, rec.insert); v >= 0) {
+    // an insert worn down to a tenth of its height has worn through: the contact model (and
+    // the insert) no longer hold, and no interval refinement changes the outcome
+    if (const int v = find_worn_through_site(pristine, rec.insert); v >= 0) {
       result.status = engine::StepStatus::kRunawayPenetration;
       result.message = "the insert wore through after about " +
-                       std::to_string(cycles_done + interval) + " cycles (articular vertex " +
+                       std::to_string(cycles_done + interval) + " cycles (" +
+                       (insert.kind == InsertKind::kRigid ? "articular vertex " : "top node ") +
                        std::to_string(v) + " is within 10 % of its height from the base)";
       break;
     }
-    if (rec.inverted_faces > 0) {
+    if (rec.folds > 0) {
       result.status = engine::StepStatus::kRunawayPenetration;
       result.message = "after " + std::to_string(cycles_done) + " cycles a single wear cycle "
-                       "would fold " + std::to_string(rec.inverted_faces) + " insert faces "
-                       "(reversed or collapsed against the pristine insert: the wear scar has "
-                       "reached faces that do not recede with it, e.g. the side walls)";
+                       "would fold " + std::to_string(rec.folds) + " " + fold_name(insert.kind) +
+                       " (reversed or collapsed against the pristine insert: the wear scar has "
+                       "reached parts that do not recede with it, e.g. the side walls)";
       break;
     }
     const double n_eff = effective_cycles(o.law, static_cast<double>(cycles_done), interval);
     for (size_t v = 0; v < depth.size(); ++v) depth[v] += per_cycle[v] * n_eff;
     insert = std::move(rec.insert);
-    model.insert = models::make_worn_insert_surface(pristine, insert);
+    apply_worn_insert(pristine, insert, model, &state);
     cycles_done += interval;
     ++u;
 
@@ -244,7 +272,7 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
     UpdateRecord r;
     r.cycles = static_cast<double>(cycles_done);
     r.refinements = refinements;
-    fill_wear_figures(surface0, depth, volume0, insert, r);
+    fill_wear_figures(sites0, areas0, depth, volume0, calc_insert_volume(pristine, insert), r);
     // a result with NaN or inconsistent volumes never passes for a finished run
     if (std::string why = check_update_record(r, closed_insert); !why.empty()) {
       result.status = engine::StepStatus::kNotFinite;
@@ -252,14 +280,16 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
       break;
     }
     result.records.push_back(r);
-    if (o.on_insert) o.on_insert(insert);
+    if (o.on_insert && insert.kind == InsertKind::kRigid) {
+      o.on_insert(make_worn_mesh(pristine, insert));
+    }
     if (!o.checkpoint.empty()) {
       Checkpoint c;
       c.identity = o.identity;
       c.cycles_done = cycles_done;
       c.next_update = u;
       c.state = state;
-      c.insert_vertices = insert.vertices;
+      c.insert_vertices = insert.points;
       c.vertex_depth = depth;
       c.records = result.records;
       c.dt = model.dt;
@@ -270,16 +300,21 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
   }
   // the last geometry's kinematics and contact: one more cycle on it, no wear accumulated
   if (result.status == engine::StepStatus::kOk) {
-    const engine::RunResult run = simulate_cycle(model, state, pristine.dt_safety, o.law, nullptr);
+    const engine::RunResult run =
+        simulate_cycle(model, state, pristine.dt_safety, o.law, nullptr, von_mises_max);
     if (run.status != engine::StepStatus::kOk) {
       result.status = run.status;
       result.message = std::string(engine::to_string(run.status)) + " in the cycle on the final geometry";
     } else {
-      complete_record(run.frames, result, depth, o);
+      complete_record(run, model, state, von_mises_max, result, depth, o);
     }
   }
   result.vertex_depth = depth;
-  result.worn = insert;
+  if (insert.kind == InsertKind::kRigid) result.worn = make_worn_mesh(pristine, insert);
+  result.worn_insert = std::move(insert);
+  result.final_model = std::move(model);
+  result.final_state = std::move(state);
+  result.von_mises_max = std::move(von_mises_max);
   return result;
 }
 

@@ -4,9 +4,13 @@
 // needed to continue is checkpointed atomically (wear/checkpoint.h), so a killed run resumes
 // to a bit-identical result.
 //
-// If an update would invert or collapse a face of the insert mesh, the update is refined: its
-// cycle count is halved (the per-cycle depth rate is kept) until no face inverts; the number
-// of refinements is reported per update.
+// Both inserts run through the same loop (wear/worn_insert.h): the rigid insert's articular
+// vertices recede and its surface elements are rebuilt; the deformable insert's top nodes
+// recede, its columns are re-graded and its solid is rebuilt, the State carried onto it.
+//
+// If an update would invert or collapse a face (rigid) or an element (deformable) of the
+// insert, the update is refined: its cycle count is halved (the per-cycle depth rate is kept)
+// until none does; the number of refinements is reported per update.
 #pragma once
 
 #include <filesystem>
@@ -17,6 +21,7 @@
 #include "engine/simulate.h"
 #include "models/build_model.h"
 #include "wear/wear_accumulator.h"
+#include "wear/worn_insert.h"
 
 namespace kneesim::wear {
 
@@ -36,7 +41,13 @@ struct UpdateRecord {
   double ap_rom = 0;               // [m]
   double ie_rom = 0;               // [rad]
   double refinements = 0;          // interval halvings needed to avoid inverted faces
-  static constexpr int kFields = 12;
+  // deformable insert (0 for the rigid one): largest von Mises stress over the cycle and the
+  // equivalent plastic strain at its end, surface layer and subsurface
+  double von_mises_surface = 0;    // [Pa]
+  double von_mises_subsurface = 0; // [Pa]
+  double plastic_strain_surface = 0;     // [-]
+  double plastic_strain_subsurface = 0;  // [-]
+  static constexpr int kFields = 16;
 };
 
 // the enclosed-volume loss and the depth integral of a closed insert differ by this fraction
@@ -73,8 +84,14 @@ struct WearResult {
   engine::StepStatus status = engine::StepStatus::kOk;
   std::string message;                  // why it stopped early
   std::vector<UpdateRecord> records;    // cycle 0 first
-  std::vector<double> vertex_depth;     // cumulative, per articular vertex [m]
-  models::TriMesh worn;                 // the insert after the last update
+  std::vector<double> vertex_depth;     // cumulative, per wear site [m]: articular vertex
+                                        // (rigid) or top node (deformable, insert_contact order)
+  models::TriMesh worn;                 // the rigid insert after the last update (empty for
+                                        // the deformable insert: worn_insert has its nodes)
+  WornInsert worn_insert;               // the worn geometry (wear/worn_insert.h)
+  engine::Model final_model;            // the model on the final geometry
+  engine::State final_state;            // the state the last cycle ended in
+  std::vector<double> von_mises_max;    // deformable: per element over the last cycle [Pa]
   std::vector<engine::Frame> frames;    // the last simulated cycle (on the final geometry)
   int resumed_from_update = -1;         // update index the run resumed after, -1 if fresh
 };

@@ -21,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (data[0] % 2 == 1) {
     bytes.assign(data + 1, data + size);
   } else {
-    const char magic[16] = "kneesim-wear-v2";
+    const char magic[16] = "kneesim-wear-v3";
     bytes.assign(magic, magic + sizeof magic);
     bytes.insert(bytes.end(), data + 1, data + size);
     const std::uint64_t h = kneesim::wear::fnv1a(bytes.data(), bytes.size());

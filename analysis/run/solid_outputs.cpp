@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "engine/io/vtp.h"
 #include "engine/io/vtu.h"
+#include "engine/step.h"
 
 namespace kneesim::run {
 
@@ -19,6 +21,20 @@ void SolidCycleTracker::observe(const engine::Data& data) {
   for (int e = 0; e < n; ++e) von_mises_max[e] = std::max(von_mises_max[e], sd.von_mises[e]);
   kinetic.push_back(sd.kinetic_energy);
   internal.push_back(sd.total_strain_energy + sd.total_plastic_work);
+}
+
+nlohmann::json describe_solid_model(const engine::Model& model) {
+  const engine::solid::SolidModel& solid = model.insert_solid;
+  nlohmann::json j;
+  j["insert"] = "deformable";
+  j["solid_elements"] = solid.num_elements();
+  j["solid_nodes"] = solid.num_nodes();
+  j["solid_surface_nodes"] = model.insert_contact.size();
+  j["solid_dt_critical_s"] = solid.dt_critical;
+  j["solid_mass_kg"] = solid.physical_mass;
+  j["solid_added_mass_kg"] = solid.added_mass;
+  j["solid_damping_per_s"] = solid.damping_alpha;
+  return j;
 }
 
 nlohmann::json describe_solid_cycle(const engine::Model& model, const engine::State& state,
@@ -50,15 +66,7 @@ nlohmann::json describe_solid_cycle(const engine::Model& model, const engine::St
       ratio_max = std::max(ratio_max, tracker.kinetic[i] / tracker.internal[i]);
     }
   }
-  nlohmann::json j;
-  j["insert"] = "deformable";
-  j["solid_elements"] = n_el;
-  j["solid_nodes"] = solid.num_nodes();
-  j["solid_surface_nodes"] = model.insert_contact.size();
-  j["solid_dt_critical_s"] = solid.dt_critical;
-  j["solid_mass_kg"] = solid.physical_mass;
-  j["solid_added_mass_kg"] = solid.added_mass;
-  j["solid_damping_per_s"] = solid.damping_alpha;
+  nlohmann::json j = describe_solid_model(model);
   j["von_mises_max_surface_MPa"] = vm_surface * 1e-6;
   j["von_mises_max_subsurface_MPa"] = vm_sub * 1e-6;
   j["plastic_strain_max_surface"] = ep_surface;
@@ -68,15 +76,21 @@ nlohmann::json describe_solid_cycle(const engine::Model& model, const engine::St
   return j;
 }
 
-void write_solid_pressure_map(const std::filesystem::path& path, const engine::Model& model,
-                              const std::vector<double>& node_pressure_Pa,
-                              const engine::State& state, const SolidCycleTracker& tracker) {
+namespace {
+
+// the top surface at the reference nodes (quads split in two) with one value per node (top
+// nodes in model.insert_contact order, 0 elsewhere) and, per face, the von Mises maximum and
+// plastic strain of the element under it
+io::VtpSurface make_top_surface(const engine::Model& model, const char* name,
+                                const std::vector<double>& top_node_values,
+                                const engine::State& state,
+                                const std::vector<double>& von_mises_max_Pa) {
   const engine::solid::SolidModel& solid = model.insert_solid;
   io::VtpSurface s;
   for (const auto& x : solid.reference_positions) s.points_mm.push_back(x * 1e3);
-  io::VtpArray p{"pressure_MPa", std::vector<double>(solid.num_nodes(), 0.0)};
+  io::VtpArray p{name, std::vector<double>(solid.num_nodes(), 0.0)};
   for (int i = 0; i < model.insert_contact.size(); ++i) {
-    p.values[model.insert_contact.nodes[i]] = node_pressure_Pa[i] * 1e-6;
+    p.values[model.insert_contact.nodes[i]] = top_node_values[i];
   }
   s.point_data.push_back(std::move(p));
   io::VtpArray vm{"von_mises_max_MPa", {}}, ep{"plastic_strain", {}};
@@ -86,13 +100,28 @@ void write_solid_pressure_map(const std::filesystem::path& path, const engine::M
     s.triangles.emplace_back(q[0], q[2], q[3]);
     const int e = model.insert_top_face_element[f];
     for (int k = 0; k < 2; ++k) {
-      vm.values.push_back(tracker.von_mises_max[e] * 1e-6);
+      vm.values.push_back(von_mises_max_Pa[e] * 1e-6);
       ep.values.push_back(state.insert_solid.alpha[e]);
     }
   }
   s.cell_data.push_back(std::move(vm));
   s.cell_data.push_back(std::move(ep));
-  io::write_vtp(path, s);
+  return s;
+}
+
+std::vector<double> scaled(const std::vector<double>& v, double factor) {
+  std::vector<double> out(v.size());
+  for (size_t i = 0; i < v.size(); ++i) out[i] = v[i] * factor;
+  return out;
+}
+
+}  // namespace
+
+void write_solid_pressure_map(const std::filesystem::path& path, const engine::Model& model,
+                              const std::vector<double>& node_pressure_Pa,
+                              const engine::State& state, const SolidCycleTracker& tracker) {
+  io::write_vtp(path, make_top_surface(model, "pressure_MPa", scaled(node_pressure_Pa, 1e-6),
+                                       state, tracker.von_mises_max));
 }
 
 void write_solid_stress_vtu(const std::filesystem::path& path, const engine::Model& model,
@@ -110,6 +139,21 @@ void write_solid_stress_vtu(const std::filesystem::path& path, const engine::Mod
   }
   m.cell_data = {std::move(vm_max), std::move(vm), std::move(ep)};
   io::write_vtu(path, m);
+}
+
+void write_solid_wear_outputs(const std::filesystem::path& out, const engine::Model& model,
+                              const engine::State& state,
+                              const std::vector<double>& von_mises_max_Pa,
+                              const std::vector<double>& depth) {
+  SolidCycleTracker tracker(model);
+  tracker.von_mises_max = von_mises_max_Pa;
+  engine::Data data = engine::make_data(model);
+  engine::calc_forces(model, state, data);  // the stresses at the state
+  write_solid_stress_vtu(out / "insert_stress.vtu", model, state, data, tracker);
+
+  io::write_vtp(out / "wear_surface.vtp", make_top_surface(model, "wear_depth_mm",
+                                                           scaled(depth, 1e3), state,
+                                                           von_mises_max_Pa));
 }
 
 }  // namespace kneesim::run

@@ -24,6 +24,9 @@ struct SolidCycleTracker {
   void observe(const engine::Data& data);
 };
 
+// summary fields of the solid itself: element and node counts, mass and mass scaling, damping
+nlohmann::json describe_solid_model(const engine::Model& model);
+
 // summary fields: element and node counts, mass scaling, stress and plastic-strain maxima
 // (surface and subsurface), and the energy ratio
 nlohmann::json describe_solid_cycle(const engine::Model& model, const engine::State& state,
@@ -40,5 +43,15 @@ void write_solid_pressure_map(const std::filesystem::path& path, const engine::M
 void write_solid_stress_vtu(const std::filesystem::path& path, const engine::Model& model,
                             const engine::State& state, const engine::Data& data,
                             const SolidCycleTracker& tracker);
+
+// the outputs of a wear run on the deformable insert (kneesim wear): out/insert_stress.vtu, the
+// worn hex mesh at the state with von_mises_max_MPa (over the last cycle), von_mises_MPa and
+// plastic_strain per element, and out/wear_surface.vtp, the worn top surface (reference
+// positions) with wear_depth_mm per node and the von Mises maximum and plastic strain of the
+// element under each face; depth per top node (model.insert_contact order) [m]
+void write_solid_wear_outputs(const std::filesystem::path& out, const engine::Model& model,
+                              const engine::State& state,
+                              const std::vector<double>& von_mises_max_Pa,
+                              const std::vector<double>& depth);
 
 }  // namespace kneesim::run

@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "analysis/run/run_outputs.h"
+#include "analysis/run/solid_outputs.h"
 #include "engine/errors.h"
 #include "engine/io/json_out.h"
 #include "engine/io/output_folder.h"
@@ -24,42 +25,72 @@
 #include "wear/checkpoint.h"
 #include "wear/geometry_update.h"
 #include "wear/wear_loop.h"
+#include "wear/worn_insert.h"
 
 namespace kneesim::run {
 namespace {
 
 constexpr double kM3ToMm3 = 1e9;
 
-io::Table make_wear_table(const std::vector<wear::UpdateRecord>& records, double density) {
+// the deformable insert's extra columns: von Mises and plastic strain, surface and subsurface
+io::Table make_wear_table(const std::vector<wear::UpdateRecord>& records, double density,
+                          bool solid) {
   io::Table t;
   t.columns = {"cycles",           "volume_mm3",        "volume_depth_mm3",
                "mass_mg",          "max_depth_mm",      "medial_volume_mm3",
                "lateral_volume_mm3", "contact_area_mm2", "peak_pressure_MPa",
                "mean_peak_pressure_MPa", "ap_rom_mm",   "ie_rom_deg",
                "refinements"};
+  if (solid) {
+    for (const char* c : {"von_mises_max_surface_MPa", "von_mises_max_subsurface_MPa",
+                          "plastic_strain_max_surface", "plastic_strain_max_subsurface"}) {
+      t.columns.push_back(c);
+    }
+  }
   for (const auto& r : records) {
-    t.add_row({r.cycles, r.volume * kM3ToMm3, r.volume_depth * kM3ToMm3,
-               r.volume * kM3ToMm3 * density, r.max_depth * 1e3, r.medial_volume * kM3ToMm3,
-               r.lateral_volume * kM3ToMm3, r.contact_area * 1e6, r.peak_pressure * 1e-6,
-               r.mean_peak_pressure * 1e-6, r.ap_rom * 1e3, r.ie_rom * 180.0 / std::numbers::pi,
-               r.refinements});
+    std::vector<double> row = {
+        r.cycles, r.volume * kM3ToMm3, r.volume_depth * kM3ToMm3,
+        r.volume * kM3ToMm3 * density, r.max_depth * 1e3, r.medial_volume * kM3ToMm3,
+        r.lateral_volume * kM3ToMm3, r.contact_area * 1e6, r.peak_pressure * 1e-6,
+        r.mean_peak_pressure * 1e-6, r.ap_rom * 1e3, r.ie_rom * 180.0 / std::numbers::pi,
+        r.refinements};
+    if (solid) {
+      row.insert(row.end(), {r.von_mises_surface * 1e-6, r.von_mises_subsurface * 1e-6,
+                             r.plastic_strain_surface, r.plastic_strain_subsurface});
+    }
+    t.add_row(row);
   }
   return t;
 }
 
-io::VtpSurface make_depth_map(const engine::InsertSurface& s, const std::vector<double>& depth) {
+// the depth map over the insert's wear sites on the pristine geometry: the articular surface
+// (rigid) or the top quads of the hex mesh, split into triangles (deformable; the points are
+// all hex nodes, depth 0 off the top)
+io::VtpSurface make_depth_map(const engine::Model& m, const std::vector<double>& depth) {
   io::VtpSurface v;
-  for (const auto& p : s.vertices_T) v.points_mm.push_back(p * 1e3);
-  v.triangles = s.triangles;
   io::VtpArray d{"wear_depth_mm", {}};
-  for (double x : depth) d.values.push_back(x * 1e3);
+  if (m.insert_solid.empty()) {
+    for (const auto& p : m.insert.vertices_T) v.points_mm.push_back(p * 1e3);
+    v.triangles = m.insert.triangles;
+    for (double x : depth) d.values.push_back(x * 1e3);
+  } else {
+    for (const auto& p : m.insert_solid.reference_positions) v.points_mm.push_back(p * 1e3);
+    for (const auto& q : m.insert_top_faces) {
+      v.triangles.emplace_back(q[0], q[1], q[2]);
+      v.triangles.emplace_back(q[0], q[2], q[3]);
+    }
+    d.values.assign(m.insert_solid.num_nodes(), 0.0);
+    for (int i = 0; i < m.insert_contact.size(); ++i) {
+      d.values[m.insert_contact.nodes[i]] = depth[i] * 1e3;
+    }
+  }
   v.point_data.push_back(std::move(d));
   return v;
 }
 
-void write_depth_map(const std::filesystem::path& path, const engine::InsertSurface& s,
+void write_depth_map(const std::filesystem::path& path, const engine::Model& m,
                      const std::vector<double>& depth) {
-  io::write_vtp(path, make_depth_map(s, depth));
+  io::write_vtp(path, make_depth_map(m, depth));
 }
 
 // least-squares slope of volume against cycles through the updates after the first [mm3/Mc]
@@ -89,7 +120,8 @@ bool clear_wear_outputs(const std::filesystem::path& dir) {
     if (name == "wear.csv" || name == "summary.json" || name == "wear.png" ||
         name == "depth_map.png" || name == "final_depth.csv" || name == "wear.checkpoint" ||
         name == "summary.failed.json" || name == "wear.partial.csv" ||
-        name == "kinematics.csv" || name.rfind("wear_depth_", 0) == 0) {
+        name == "kinematics.csv" || name == "insert_stress.vtu" || name == "wear_surface.vtp" ||
+        name.rfind("wear_depth_", 0) == 0) {
       fs::remove(e.path());
       any = true;
     }
@@ -166,10 +198,11 @@ static long count_updates(const WearJob& j, long limit) {
 // output folder: refused with the estimate when they cannot fit, a note above 2 GB. One map's
 // size is that of its text with a depth of nine significant digits at every vertex (a worn
 // insert's; the pristine map's zeros are shorter), formatted once.
-static void check_output_size(const WearJob& j, const engine::InsertSurface& s) {
+static void check_output_size(const WearJob& j, const models::BuiltModel& built) {
   if (!j.depth_maps) return;
-  const std::vector<double> typical(s.vertices_T.size(), 1.23456789e-4);  // [m]
-  const double per_map = static_cast<double>(io::format_vtp(make_depth_map(s, typical)).size());
+  const std::vector<double> typical(wear::calc_site_areas(built).size(), 1.23456789e-4);  // [m]
+  const double per_map =
+      static_cast<double>(io::format_vtp(make_depth_map(built.model, typical)).size());
   const long maps = count_updates(j, std::numeric_limits<long>::max() - 1) + 1;
   const double total = per_map * static_cast<double>(maps);
   const std::string what = std::to_string(maps) + " depth maps (wear_depth_<cycles>.vtp) of about " +
@@ -190,12 +223,6 @@ static void check_output_size(const WearJob& j, const engine::InsertSurface& s) 
 void check_wear_job(const WearJob& j) {
   constexpr long kMaxUpdates = 10000;
   make_wear_law(j);
-  if (j.config.insert_kind != "rigid") {
-    // the wear accumulation reads the rigid insert's element pressures (issue 11 item 4)
-    throw InputError("insert = \"" + j.config.insert_kind + "\" is not allowed for wear runs "
-                     "yet (wear on the deformable insert is not implemented); allowed: "
-                     "\"rigid\"");
-  }
   if (j.cycles <= 0) {
     throw InputError("--cycles = " + std::to_string(j.cycles) + " is not allowed (a positive "
                      "number of gait cycles)");
@@ -262,7 +289,8 @@ nlohmann::json run_wear_job(const WearJob& j) {
   io::check_output_folder(j.out);  // before the model is built and the loop starts
   if (!resume) clear_wear_outputs(j.out);
   const models::BuiltModel built = models::build_model(j.config);
-  check_output_size(j, built.model.insert);  // still before the first cycle
+  check_output_size(j, built);  // still before the first cycle
+  const bool solid = !built.model.insert_solid.empty();
   const models::MaterialConfig& mat = built.material;
   const double density_mg_per_mm3 = mat.density_g_per_cm3;  // g/cm^3 == mg/mm^3
 
@@ -274,11 +302,11 @@ nlohmann::json run_wear_job(const WearJob& j) {
   if (!j.quiet) o.progress = [&bar](double f) { bar.update(f); };
   o.on_update = [&](const std::vector<wear::UpdateRecord>& records,
                     const std::vector<double>& depth) {
-    io::write_csv(j.out / "wear.csv", make_wear_table(records, density_mg_per_mm3));
+    io::write_csv(j.out / "wear.csv", make_wear_table(records, density_mg_per_mm3, solid));
     if (j.depth_maps) {
       char name[64];
       std::snprintf(name, sizeof name, "wear_depth_%09.0f.vtp", records.back().cycles);
-      write_depth_map(j.out / name, built.model.insert, depth);
+      write_depth_map(j.out / name, built.model, depth);
     }
   };
   const wear::WearResult result = wear::run_wear(built, o);
@@ -321,6 +349,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
   summary["medial_volume_mm3"] = last.medial_volume * kM3ToMm3;
   summary["lateral_volume_mm3"] = last.lateral_volume * kM3ToMm3;
   summary["mean_peak_pressure_MPa"] = first.mean_peak_pressure * 1e-6;
+  summary["contact_area_mm2"] = first.contact_area * 1e6;
   summary["peak_pressure_MPa"] = first.peak_pressure * 1e-6;
   summary["ap_rom_mm"] = first.ap_rom * 1e3;
   summary["ie_rom_deg"] = first.ie_rom * 180.0 / std::numbers::pi;
@@ -330,14 +359,32 @@ nlohmann::json run_wear_job(const WearJob& j) {
   // this release only, for scripts that read them (README)
   summary["ie_rom_mm"] = summary["ie_rom_deg"];
   summary["final_ie_rom_mm"] = summary["final_ie_rom_deg"];
+  if (solid) {
+    // the pristine cycle's maxima (as the pressures above) and the final geometry's
+    summary.update(describe_solid_model(built.model));
+    summary["von_mises_max_surface_MPa"] = first.von_mises_surface * 1e-6;
+    summary["von_mises_max_subsurface_MPa"] = first.von_mises_subsurface * 1e-6;
+    summary["plastic_strain_max_surface"] = first.plastic_strain_surface;
+    summary["plastic_strain_max_subsurface"] = first.plastic_strain_subsurface;
+    summary["final_von_mises_max_surface_MPa"] = last.von_mises_surface * 1e-6;
+    summary["final_von_mises_max_subsurface_MPa"] = last.von_mises_subsurface * 1e-6;
+    summary["final_plastic_strain_max_surface"] = last.plastic_strain_surface;
+    summary["final_plastic_strain_max_subsurface"] = last.plastic_strain_subsurface;
+  }
   summary["status"] = "complete";
 
   // final depth as points for the top-view contour plot
   io::Table depth;
   depth.columns = {"x_mm", "z_mm", "depth_mm"};
+  const std::vector<Eigen::Vector3d> sites = wear::find_site_positions(built);
   for (size_t v = 0; v < result.vertex_depth.size(); ++v) {
-    const auto& p = built.model.insert.vertices_T[v];
-    depth.add_row({p.x() * 1e3, p.z() * 1e3, result.vertex_depth[v] * 1e3});
+    depth.add_row({sites[v].x() * 1e3, sites[v].z() * 1e3, result.vertex_depth[v] * 1e3});
+  }
+  if (solid) {
+    // the worn hex mesh with its element fields of the last cycle (.vtu) and its worn top
+    // surface with the depth and the elements' fields under it (.vtp)
+    write_solid_wear_outputs(j.out, result.final_model, result.final_state, result.von_mises_max,
+                             result.vertex_depth);
   }
   io::write_csv(j.out / "final_depth.csv", depth);
   io::write_csv(j.out / "kinematics.csv", make_kinematics_table(result.frames));

@@ -155,8 +155,8 @@ TEST_CASE("kneesim wear: bad input is one line on stderr and exit 2, nothing wri
       {{"--material", "unobtainium"}, "unknown material 'unobtainium'"},
       {{"--set", "material.wear_factor_mm3_per_Nmm=1e-5"}, "--allow-any-wear-factor"},
       {{"--set", "material.wear_factor_mm3_per_Nmm=1e-13"}, "--allow-any-wear-factor"},
-      // wear on the deformable insert is not implemented: refused, not run without wear
-      {{"--set", "insert=deformable"}, "insert = \"deformable\" is not allowed for wear runs"},
+      // the deformable insert's mesh options are checked before any cycle
+      {{"--set", "insert=deformable", "--set", "deformable.layers=0"}, "deformable.layers"},
   };
   for (const Case& c : cases) {
     std::string joined;

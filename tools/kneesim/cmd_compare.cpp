@@ -82,25 +82,49 @@ void run(const CompareArgs& a) {
   t.columns = {"volume_mm3",      "mass_mg",          "max_depth_mm",
                "wear_rate_mm3_per_Mc", "mean_peak_pressure_MPa", "peak_pressure_MPa",
                "ap_rom_mm",       "ie_rom_deg",        "elastic_modulus_MPa",
-               "wear_factor_mm3_per_Nmm", "friction", "dt_s", "seconds"};
+               "wear_factor_mm3_per_Nmm", "friction", "dt_s", "seconds", "contact_area_mm2"};
+  // the deformable insert's stress and plastic strain (every material runs the same insert)
+  const std::vector<std::string> solid_keys = {
+      "von_mises_max_surface_MPa", "von_mises_max_subsurface_MPa", "plastic_strain_max_surface",
+      "plastic_strain_max_subsurface"};
+  const bool solid = results.front().contains(solid_keys.front());
+  if (solid) t.columns.insert(t.columns.end(), solid_keys.begin(), solid_keys.end());
   std::string md = "| material | volume (mm³) | mass (mg) | max depth (mm) | mean peak pressure "
-                   "(MPa) | AP ROM (mm) | IE ROM (deg) |\n|---|---|---|---|---|---|---|\n";
+                   "(MPa) | AP ROM (mm) | IE ROM (deg) |";
+  md += solid ? " contact area (mm²) | von Mises max surface / subsurface (MPa) | plastic "
+                "strain max surface / subsurface |\n|---|---|---|---|---|---|---|---|---|---|\n"
+              : "\n|---|---|---|---|---|---|---|\n";
   nlohmann::json all;
   for (size_t i = 0; i < jobs.size(); ++i) {
     const auto& r = results[i];
     const auto& mat = jobs[i].config.material;
     t.label_column.push_back(a.materials[i]);
-    t.add_row({r["volume_mm3"], r["mass_mg"], r["max_depth_mm"], r["wear_rate_mm3_per_Mc"],
-               r["mean_peak_pressure_MPa"], r["peak_pressure_MPa"], r["ap_rom_mm"],
-               r["ie_rom_deg"], mat.elastic_modulus_MPa, mat.wear_factor_mm3_per_Nmm,
-               r["friction"], r["dt_s"], r["seconds"]});
+    std::vector<double> row = {
+        r["volume_mm3"], r["mass_mg"], r["max_depth_mm"], r["wear_rate_mm3_per_Mc"],
+        r["mean_peak_pressure_MPa"], r["peak_pressure_MPa"], r["ap_rom_mm"], r["ie_rom_deg"],
+        mat.elastic_modulus_MPa, mat.wear_factor_mm3_per_Nmm, r["friction"], r["dt_s"],
+        r["seconds"], r["contact_area_mm2"]};
+    if (solid) {
+      for (const std::string& k : solid_keys) row.push_back(r[k].get<double>());
+    }
+    t.add_row(row);
     char line[256];
-    std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.3f | %.1f | %.2f | %.2f |\n",
+    std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.3f | %.1f | %.2f | %.2f |",
                   a.materials[i].c_str(), r["volume_mm3"].get<double>(),
                   r["mass_mg"].get<double>(), r["max_depth_mm"].get<double>(),
                   r["mean_peak_pressure_MPa"].get<double>(), r["ap_rom_mm"].get<double>(),
                   r["ie_rom_deg"].get<double>());
     md += line;
+    if (solid) {
+      std::snprintf(line, sizeof line, " %.1f | %.1f / %.1f | %.4f / %.4f |",
+                    r["contact_area_mm2"].get<double>(),
+                    r["von_mises_max_surface_MPa"].get<double>(),
+                    r["von_mises_max_subsurface_MPa"].get<double>(),
+                    r["plastic_strain_max_surface"].get<double>(),
+                    r["plastic_strain_max_subsurface"].get<double>());
+      md += line;
+    }
+    md += "\n";
     all[a.materials[i]] = r;
   }
   std::ostringstream head;
@@ -124,7 +148,8 @@ void add_compare_command(CLI::App& app) {
       "The same wear simulation for several insert materials, concurrently (default: uhmwpe, "
       "peek, cfr-peek; 5 million cycles). Writes DIR/comparison.csv, DIR/comparison.md, "
       "DIR/comparison.json, plots (compare_wear.png, compare_kinematics.png, "
-      "compare_contact.png) and each material's wear outputs in DIR/<material>/.");
+      "compare_contact.png) and each material's wear outputs in DIR/<material>/. With --set "
+      "insert=deformable the table adds the von Mises and plastic-strain maxima.");
   cmd->add_option("config", args->config, "TOML config file")->check(CLI::ExistingFile);
   cmd->add_option("--materials", args->materials, "comma-separated material names")
       ->delimiter(',')

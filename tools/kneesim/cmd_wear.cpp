@@ -124,7 +124,10 @@ void add_wear_command(CLI::App& app) {
       "million cycles, update every 250 000, built-in implant, stanmore rig, UHMWPE). Writes "
       "DIR/wear.csv (one row per update), DIR/summary.json, DIR/wear_depth_<cycles>.vtp per "
       "update, DIR/final_depth.csv, DIR/wear.png and DIR/depth_map.png; checkpoints after "
-      "every update (DIR/wear.checkpoint) so that --resume continues a killed run.");
+      "every update (DIR/wear.checkpoint) so that --resume continues a killed run. With --set "
+      "insert=deformable the hex8 insert wears (docs/deformable.md): its top nodes recede, its "
+      "columns are re-graded, and wear.csv and summary.json add the von Mises and plastic-strain "
+      "maxima (surface, subsurface), DIR/insert_stress.vtu and DIR/wear_surface.vtp per element.");
   cmd->add_option("config", args->config, "TOML config file")->check(CLI::ExistingFile);
   cmd->add_option("--cycles", args->cycles, "total gait cycles, 1 to 1e9")
       ->capture_default_str()

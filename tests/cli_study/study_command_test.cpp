@@ -58,8 +58,17 @@ TEST_CASE("kneesim study: serial, 2 threads, and killed + resumed give the same 
   // 2 MPI ranks on loopback, one thread each
   const char* mpiexec = std::getenv("KNEESIM_MPIEXEC");
   if (mpiexec && *mpiexec) {
+    // Under the ASan+UBSan build (tools/scripts/sanitize.sh) the ranks run with leak detection
+    // off: OpenMPI 4.1's runtime does not free what its components allocate (libmpi's
+    // ompi_op_base_op_select, hwloc, the dlopen'ed mca plugins, about 20 kB) by MPI_Finalize,
+    // and LeakSanitizer cannot name the plugin frames, so no suppression can target them.
+    // Memory errors and undefined behaviour stay fatal; the serial and threaded runs above keep
+    // leak detection. Outside the sanitizer build the variable is read by nobody.
+    const char* asan = std::getenv("ASAN_OPTIONS");
+    const std::string asan_before = asan && *asan ? std::string(asan) + ":" : "";
+    const std::string rank_env = "ASAN_OPTIONS='" + asan_before + "detect_leaks=0' ";
     const fs::path ranks = tmp.path / "ranks";
-    std::string cmd = std::string(mpiexec) + " --allow-run-as-root --oversubscribe --bind-to "
+    std::string cmd = rank_env + std::string(mpiexec) + " --allow-run-as-root --oversubscribe --bind-to "
                       "none -np 2 " + find_kneesim().string();
     for (const auto& x : study_args(ranks, "1")) cmd += " '" + x + "'";
     const int rc = std::system((cmd + " > " + (tmp.path / "mpi.log").string() + " 2>&1").c_str());
@@ -70,7 +79,7 @@ TEST_CASE("kneesim study: serial, 2 threads, and killed + resumed give the same 
 
     // ranks launched with different configs: refused before any trial
     const fs::path bad = tmp.path / "disagree";
-    std::string cmd2 = std::string(mpiexec) + " --allow-run-as-root --oversubscribe --bind-to "
+    std::string cmd2 = rank_env + std::string(mpiexec) + " --allow-run-as-root --oversubscribe --bind-to "
                        "none -np 2 sh -c '" + find_kneesim().string() +
                        " study --trials 4 --set implant.edge_length_mm=2 --set "
                        "rig.restraint.gap_mm=3.$OMPI_COMM_WORLD_RANK --quiet --out " +

@@ -1,49 +1,162 @@
 #include "engine/io/plot.h"
 
+#include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
+#include <nlohmann/json.hpp>
 
 namespace kneesim::io {
 namespace {
+
+const char* const kPython = "/usr/bin/python3";
 
 std::string plots_dir() {
   if (const char* env = std::getenv("KNEESIM_PLOTS_DIR")) return env;
   return KNEESIM_PLOTS_DIR;
 }
 
+void warn_failed(const std::string& script) {
+  std::fprintf(stderr, "warning: plot script %s failed; the CSV and JSON results are complete\n",
+               script.c_str());
+}
+
+// starts python3 with the arguments, MPLBACKEND=Agg added to the environment; when socket_fd
+// >= 0 it becomes the child's stdin and fd 3. Everything the child needs is prepared before
+// fork(): a multi-threaded parent's child may only call async-signal-safe functions.
+pid_t spawn_python(const std::vector<std::string>& args, int socket_fd) {
+  std::vector<std::string> env_text = {"MPLBACKEND=Agg"};
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (std::string(*e).rfind("MPLBACKEND=", 0) != 0) env_text.emplace_back(*e);
+  }
+  std::vector<char*> envp, argv;
+  for (auto& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  argv.push_back(const_cast<char*>(kPython));
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (socket_fd >= 0 && (::dup2(socket_fd, 0) < 0 || ::dup2(socket_fd, 3) < 0)) ::_exit(127);
+    ::execve(kPython, argv.data(), envp.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+bool wait_ok(pid_t pid) {
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return false;
+  }
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+// the open session, if any: the interpreter, its socket and the scripts queued, in order
+struct Session {
+  pid_t pid = -1;
+  int fd = -1;
+  std::vector<std::string> queued;
+};
+std::mutex g_mutex;
+Session* g_session = nullptr;
+
+bool send_all(int fd, const std::string& text) {
+  for (size_t done = 0; done < text.size();) {
+    const ssize_t n = ::send(fd, text.data() + done, text.size() - done, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<size_t>(n);
+  }
+  return true;
+}
+
 }  // namespace
 
 bool run_plot(const std::string& script, const std::vector<std::string>& args) {
-  const std::string python = "/usr/bin/python3";
   const std::string path = plots_dir() + "/" + script;
-  if (!std::filesystem::exists(python)) {
-    std::fprintf(stderr, "warning: %s not found, skipped plot %s\n", python.c_str(),
-                 script.c_str());
+  if (!std::filesystem::exists(kPython)) {
+    std::fprintf(stderr, "warning: %s not found, skipped plot %s\n", kPython, script.c_str());
     return false;
   }
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::setenv("MPLBACKEND", "Agg", 1);
-    std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(python.c_str()));
-    argv.push_back(const_cast<char*>(path.c_str()));
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(python.c_str(), argv.data());
-    ::_exit(127);
+  {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    if (g_session != nullptr) {
+      const nlohmann::json request = {{"script", path}, {"args", args}};
+      if (send_all(g_session->fd, request.dump() + "\n")) {
+        g_session->queued.push_back(script);
+        return true;
+      }
+      // the interpreter is gone: this plot runs on its own below
+    }
   }
-  int status = 0;
-  if (pid < 0 || ::waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) ||
-      WEXITSTATUS(status) != 0) {
-    std::fprintf(stderr, "warning: plot script %s failed; the CSV and JSON results are complete\n",
-                 script.c_str());
+  std::vector<std::string> argv = {path};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const pid_t pid = spawn_python(argv, -1);
+  if (pid < 0 || !wait_ok(pid)) {
+    warn_failed(script);
     return false;
   }
   return true;
+}
+
+PlotSession::PlotSession() {
+  if (!std::filesystem::exists(kPython)) return;  // run_plot warns per plot
+  int sv[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0) return;
+  const pid_t pid = spawn_python({plots_dir() + "/plot_server.py"}, sv[1]);
+  ::close(sv[1]);
+  if (pid < 0) {
+    ::close(sv[0]);
+    return;
+  }
+  std::lock_guard<std::mutex> lock(g_mutex);
+  if (g_session != nullptr) {  // one session at a time: this one stays unused
+    ::close(sv[0]);
+    ::kill(pid, SIGTERM);
+    wait_ok(pid);
+    return;
+  }
+  g_session = new Session{pid, sv[0], {}};
+}
+
+PlotSession::~PlotSession() {
+  Session* s = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    std::swap(s, g_session);
+  }
+  if (s == nullptr) return;
+  if (s->queued.empty()) {
+    // nothing to plot (an error ended the command, or it had no plot): not worth waiting for
+    ::kill(s->pid, SIGTERM);
+  }
+  ::shutdown(s->fd, SHUT_WR);  // end of requests: the interpreter exits after the last
+  // one reply line per queued plot, in order; a missing line is a failed plot
+  std::string replies;
+  char buf[256];
+  for (;;) {
+    const ssize_t n = ::read(s->fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    replies.append(buf, static_cast<size_t>(n));
+  }
+  ::close(s->fd);
+  wait_ok(s->pid);
+  size_t pos = 0;
+  for (const std::string& script : s->queued) {
+    const size_t end = replies.find('\n', pos);
+    const bool ok = end != std::string::npos && replies.compare(pos, end - pos, "ok") == 0;
+    if (!ok) warn_failed(script);
+    pos = end == std::string::npos ? replies.size() : end + 1;
+  }
+  delete s;
 }
 
 }  // namespace kneesim::io

@@ -68,6 +68,9 @@ void run(const CompareArgs& a) {
   for (const fs::path& d : others) {
     if (run::clear_wear_outputs(d) && fs::is_empty(d)) fs::remove(d);
   }
+  // one interpreter for the materials' plots and the comparison's, started now: it loads
+  // matplotlib while the simulations run and plots each material as it finishes
+  const io::PlotSession plots;
   std::mutex print;
   const std::vector<nlohmann::json> results =
       run::run_wear_jobs(jobs, a.jobs, [&](size_t i, const nlohmann::json& r) {

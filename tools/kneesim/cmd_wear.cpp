@@ -6,6 +6,7 @@
 #include "analysis/run/wear_job.h"
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
+#include "engine/io/plot.h"
 #include "engine/io/table.h"
 #include "models/config.h"
 #include "engine/io/output_folder.h"
@@ -102,6 +103,8 @@ void run(const WearArgs& a) {
   for (const auto& p : a.law_params) id << " " << p;
   for (long s : a.schedule) id << " " << s;
   job.identity_text = id.str();
+  run::check_wear_job(job);
+  const io::PlotSession plots;  // matplotlib loads on the other core while the wear runs
   const nlohmann::json s = run::run_wear_job(job);
   if (!a.quiet) {
     std::printf("%s: %.2f mm^3 (%.2f mg) after %ld cycles, %.2f mm^3 per million cycles, max "

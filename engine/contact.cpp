@@ -312,8 +312,22 @@ struct ContactReduction {
   std::array<CarriageMoments, 2> moments;
   std::array<Eigen::Vector3d, 2> pivots;
 
-  explicit ContactReduction(const State& state)
-      : pivots{state.carriages[0].pivot_W, state.carriages[1].pivot_W} {}
+  // whether a carriage has a rotational DOF that the integrator moves (free or force-driven):
+  // the moments serve only those (the default rig's femur has none: its flexion is
+  // prescribed, the other rotations locked), so a carriage without one skips them
+  std::array<bool, 2> rotates{};
+
+  ContactReduction(const Model& model, const State& state)
+      : pivots{state.carriages[0].pivot_W, state.carriages[1].pivot_W} {
+    for (int c = 0; c < 2; ++c) {
+      for (int i = 3; i < kNumDof; ++i) rotates[c] = rotates[c] || is_moved(model, c, i);
+    }
+  }
+
+  static bool is_moved(const Model& model, int c, int i) {
+    const DofMode mode = model.carriages[c].dofs[i].mode;
+    return mode == DofMode::kFree || mode == DofMode::kForce;
+  }
 
   [[gnu::always_inline]] void add(const InsertSurface& s, int e, const ContactTerms& t) {
     for (int i = 0; i < 3; ++i) {
@@ -321,7 +335,9 @@ struct ContactReduction {
       stiffness_t[i] += t.ke * t.n_W[i] * t.n_W[i];
       friction_t[i] += t.ce * (1.0 - t.n_W[i] * t.n_W[i]);
     }
-    for (int c = 0; c < 2; ++c) moments[c].add(t.ke, t.ce, t.c_W - pivots[c], t.n_W);
+    for (int c = 0; c < 2; ++c) {
+      if (rotates[c]) moments[c].add(t.ke, t.ce, t.c_W - pivots[c], t.n_W);
+    }
     force += t.force_W;
     moment_O += t.c_W.cross(t.force_W);
     const double p = t.pressure, d = t.penetration;
@@ -336,7 +352,8 @@ struct ContactReduction {
     ++sum.elements_in_contact;
   }
 
-  // the summary into data.contact, the friction slopes into data.friction_damping
+  // the summary into data.contact, the friction slopes into data.friction_damping (zero for
+  // a DOF that is neither free nor force-driven: the integrator does not read it)
   void finish(const Model& model, Data& data) {
     std::array<std::array<double, kNumDof>, 2> stiffness{};
     for (int c = 0; c < 2; ++c) {
@@ -346,9 +363,11 @@ struct ContactReduction {
         const Eigen::Vector3d& a = data.axes[c][i];
         stiffness[c][i] = stiffness_t[i];
         stiffness[c][3 + i] = quadratic_form(mc.ku, a);
-        data.friction_damping[c][i] = friction_t[i];
+        data.friction_damping[c][i] = is_moved(model, c, i) ? friction_t[i] : 0.0;
         data.friction_damping[c][3 + i] =
-            a.squaredNorm() * trace_cr - quadratic_form(mc.cr, a) - quadratic_form(mc.cu, a);
+            is_moved(model, c, 3 + i)
+                ? a.squaredNorm() * trace_cr - quadratic_form(mc.cr, a) - quadratic_form(mc.cu, a)
+                : 0.0;
       }
     }
     sum.force_W = force;
@@ -367,7 +386,7 @@ void calc_contact(const Model& model, const State& state, Data& data) {
   data.evaluations += n;
   data.in_contact.clear();
   const ElementLoop loop(model, state, data);
-  ContactReduction reduction(state);
+  ContactReduction reduction(model, state);
   if (n > kParallelAbove) {
     // element-local evaluation in parallel (each element writes only its own slots), then the
     // reduction in element order: bit-identical for any thread count

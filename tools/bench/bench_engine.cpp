@@ -125,6 +125,46 @@ struct DenseField {
   }
 };
 
+// the bricked field sampled at grid coordinates as the contact loop does: with the SSE2 pairs
+// of engine/sdf.h (round 3), or with round 2's scalar code, copied here as DenseField copies
+// the layout before: the "before" of the interpolation row, and a check that both give the
+// same bits
+struct GridSampler {
+  engine::FieldSampler s;
+  Eigen::Vector3d origin;
+  double spacing;
+  bool scalar;
+  GridSampler(const engine::SignedDistanceField& f, bool scalar_code)
+      : s(f.sampler()), origin(f.origin), spacing(f.spacing), scalar(scalar_code) {}
+  double sample(const Eigen::Vector3d& p_F) const {
+    const Eigen::Vector3d g = (p_F - origin) / spacing;
+    return scalar ? sample_scalar(g) : s.sample_grid(g);
+  }
+  [[gnu::noinline]] double sample_scalar(const Eigen::Vector3d& g) const {
+    if (!(g.x() >= 0.0 && g.y() >= 0.0 && g.z() >= 0.0 && g.x() < s.limit[0] &&
+          g.y() < s.limit[1] && g.z() < s.limit[2])) {
+      return s.band;
+    }
+    const int i = static_cast<int>(g.x()), j = static_cast<int>(g.y()),
+              k = static_cast<int>(g.z());
+    const engine::BrickAxis ax = s.axis[0][i], ay = s.axis[1][j], az = s.axis[2][k];
+    const int32_t brick = s.brick_of[ax.brick + ay.brick + az.brick];
+    if (brick < 0) return brick == engine::kBrickOutside ? s.outside : s.inside;
+    const double tx = g.x() - i, ty = g.y() - j, tz = g.z() - k;
+    constexpr long sx = 1, sy = engine::kBrickNodes, sz = sy * sy;
+    const float* phi =
+        s.values + static_cast<long>(brick) * engine::kBrickSize + (ax.node + ay.node + az.node);
+    const double c000 = phi[0], c100 = phi[sx];
+    const double c010 = phi[sy], c110 = phi[sx + sy];
+    const double c001 = phi[sz], c101 = phi[sx + sz];
+    const double c011 = phi[sy + sz], c111 = phi[sx + sy + sz];
+    const double c00 = c000 + tx * (c100 - c000), c10 = c010 + tx * (c110 - c010);
+    const double c01 = c001 + tx * (c101 - c001), c11 = c011 + tx * (c111 - c011);
+    const double c0 = c00 + ty * (c10 - c00), c1 = c01 + ty * (c11 - c01);
+    return c0 + tz * (c1 - c0);
+  }
+};
+
 // the points (F frame) at which a gait cycle samples the fine field, in evaluation order
 std::vector<Eigen::Vector3d> record_sample_points(const engine::Model& model) {
   std::vector<Eigen::Vector3d> points;
@@ -296,6 +336,24 @@ int main(int argc, char** argv) {
   std::printf("| dense x-fastest (before) | %.1f | 1 | %.9e |\n", median(t_dense), sum_dense);
   std::printf("| bricked 8^3 (after) | %.1f | %.2f | %.9e |\n", median(t_brick),
               median(t_brick) / median(t_dense), sum_brick);
+  std::fflush(stdout);
+
+  // round 3: the same points at grid coordinates, round 2's scalar interpolation against the
+  // SSE2 pairs (the sample inlines into the contact loop, where it saves more: no call)
+  const GridSampler scalar(field, true), pairs(field, false);
+  std::vector<double> t_scalar, t_pairs;
+  double sum_scalar = 0, sum_pairs = 0;
+  for (int r = 0; r < repeats; ++r) {
+    t_scalar.push_back(ns_per_sample(scalar, points, sum_scalar));
+    t_pairs.push_back(ns_per_sample(pairs, points, sum_pairs));
+  }
+  std::printf("\n| bricked field at grid coordinates | ns/sample | ratio to scalar | sum of samples "
+              "(m) |\n|---|---|---|---|\n");
+  std::printf("| scalar interpolation (round 2) | %.1f | 1 | %.17g |\n", median(t_scalar),
+              sum_scalar);
+  std::printf("| SSE2 pairs (round 3) | %.1f | %.2f | %.17g (%s) |\n", median(t_pairs),
+              median(t_pairs) / median(t_scalar), sum_pairs,
+              sum_pairs == sum_scalar ? "same bits" : "DIFFERENT");
   std::fflush(stdout);
 
   // hardware counters per evaluation over one cycle of the default model

@@ -1,7 +1,10 @@
-// `kneesim bor`: the block-on-ring semi-analytic wear model (physics.md section 7) run forward
-// at one load, with the steady-state Archard law or one of the named wear-law extensions.
-// Writes bor.csv (one row every --step cycles from 0 to --cycles inclusive), summary.json and
-// bor.png.
+// `kneesim bor`: the block-on-ring wear model run forward at one load. --model analytic (the
+// default): the semi-analytic model (physics.md section 7) with the steady-state Archard law or
+// one of the named wear-law extensions. --model fe: the numerical model (wear/bor/bor_fe.h),
+// a rigid ring on the deformable hex8 block with Archard wear and a geometry update every
+// --update-every cycles. Both write bor.csv with the same columns (one row every --step cycles
+// from 0 to --cycles inclusive), summary.json and bor.png; fe adds bor_fe.csv (the solver's
+// figures per row).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +19,7 @@
 #include "engine/io/output_folder.h"
 #include "tools/kneesim/bor_options.h"
 #include "tools/kneesim/commands.h"
+#include "wear/bor/bor_fe.h"
 #include "wear/bor/bor_simulation.h"
 
 namespace kneesim::cli {
@@ -29,6 +33,12 @@ struct BorOptions {
   std::string effect = "none";
   std::vector<std::string> effect_params;
   std::string out = "kneesim-bor";
+  std::string model = "analytic";
+  double fe_element_mm = 0.1;
+  double fe_axial_element_mm = 1.0;
+  double update_every = 10000.0;
+  int fe_max_steps = 200000;
+  int threads = 1;
   BorRigOptions rig;
 };
 
@@ -66,10 +76,48 @@ void run_bor(const BorOptions& o) {
   std::vector<double> cycles;
   for (double n = 0.0; n < o.cycles; n += o.step) cycles.push_back(n);
   cycles.push_back(o.cycles);
-  const auto rows = bor::simulate_bor(rig, o.load_N, law, params, cycles);
-  const bor::BorContact unworn = bor::solve_bor_contact(rig, o.load_N, 0.0);
+  check(o.model == "analytic" || o.model == "fe",
+        "--model = '" + o.model + "' is not a block-on-ring model; allowed: analytic, fe.");
+  const bool fe = o.model == "fe";
+  check(!fe || law == bor::BorWearLaw::archard,
+        "--effect = '" + o.effect + "' is not available with --model fe; allowed: none.");
+  bor::BorFeOptions fe_options;
+  fe_options.element_size = 1e-3 * o.fe_element_mm;
+  fe_options.axial_element_size = 1e-3 * o.fe_axial_element_mm;
+  fe_options.update_cycles = o.update_every;
+  fe_options.max_relax_steps = o.fe_max_steps;
+  fe_options.threads = o.threads;
+  if (fe) bor::check_bor_fe_options(fe_options, rig);
 
   const std::filesystem::path out = o.out;
+  std::vector<bor::BorRow> rows;
+  std::vector<bor::BorFeRow> fe_rows;
+  bor::BorFeMeshInfo fe_info;
+  if (fe) {
+    fe_rows = bor::simulate_bor_fe(
+        rig, o.load_N, params, cycles, fe_options,
+        [&](const bor::BorFeRow& r, const bor::BorFeMeshInfo& info) {
+          fe_info = info;
+          std::fprintf(stderr, "  %8.0f cycles: volume %.4f mm^3, depth %.4f mm, width %.3f mm, "
+                       "%d relaxation steps\n", r.row.cycles, r.row.volume * 1e9,
+                       r.row.depth * 1e3, r.row.contact_width * 1e3, r.relax_steps);
+        });
+    for (const auto& r : fe_rows) rows.push_back(r.row);
+    io::Table t;
+    t.columns = {"cycles", "volume_mm3", "wear_sum_volume_mm3", "depth_mm", "contact_width_mm",
+                 "second_moment_half_width_mm", "mean_pressure_MPa", "peak_pressure_MPa",
+                 "ring_reaction_N", "relaxation_steps", "kinetic_ratio"};
+    for (const auto& r : fe_rows) {
+      t.add_row({r.row.cycles, r.row.volume * 1e9, r.wear_sum_volume * 1e9, r.row.depth * 1e3,
+                 r.row.contact_width * 1e3, r.hertz_half_width * 1e3,
+                 r.row.mean_pressure * 1e-6, r.peak_pressure * 1e-6, r.contact_force,
+                 static_cast<double>(r.relax_steps), r.kinetic_ratio});
+    }
+    io::write_csv(out / "bor_fe.csv", t);
+  } else {
+    rows = bor::simulate_bor(rig, o.load_N, law, params, cycles);
+  }
+  const bor::BorContact unworn = bor::solve_bor_contact(rig, o.load_N, 0.0);
   io::Table table;
   table.columns = {"cycles", "volume_mm3", "depth_mm", "contact_width_mm", "mean_pressure_MPa"};
   for (const auto& r : rows) {
@@ -80,6 +128,7 @@ void run_bor(const BorOptions& o) {
 
   const auto& last = rows.back();
   nlohmann::json s;
+  s["model"] = o.model;
   s["load_N"] = o.load_N;
   s["cycles"] = o.cycles;
   s["k_mm3_per_Nmm"] = o.k_mm3_per_Nmm;
@@ -94,9 +143,23 @@ void run_bor(const BorOptions& o) {
   s["contact_width_mm"] = last.contact_width * 1e3;
   s["mean_pressure_MPa"] = last.mean_pressure * 1e-6;
   s["wear_rate_mm3_per_Mc"] = last.volume * 1e9 / o.cycles * 1e6;
-  s["unworn_half_width_mm"] = unworn.contact_width * 0.5e3;
-  s["unworn_penetration_mm"] = unworn.penetration * 1e3;
-  s["unworn_mean_pressure_MPa"] = unworn.mean_pressure * 1e-6;
+  if (fe) {
+    s["unworn_half_width_mm"] = fe_rows.front().row.contact_width * 0.5e3;
+    s["unworn_second_moment_half_width_mm"] = fe_rows.front().hertz_half_width * 1e3;
+    s["unworn_mean_pressure_MPa"] = fe_rows.front().row.mean_pressure * 1e-6;
+    s["unworn_peak_pressure_MPa"] = fe_rows.front().peak_pressure * 1e-6;
+    s["update_every_cycles"] = o.update_every;
+    s["fe_element_mm"] = o.fe_element_mm;
+    s["fe_axial_element_mm"] = o.fe_axial_element_mm;
+    s["fe_elements_half_block"] = fe_info.elements;
+    s["fe_step_ns"] = fe_info.dt * 1e9;
+    s["fe_damping_per_s"] = fe_info.damping_alpha;
+    s["threads"] = o.threads;
+  } else {
+    s["unworn_half_width_mm"] = unworn.contact_width * 0.5e3;
+    s["unworn_penetration_mm"] = unworn.penetration * 1e3;
+    s["unworn_mean_pressure_MPa"] = unworn.mean_pressure * 1e-6;
+  }
   s["foundation_constant_MPa_per_mm"] = bor::foundation_constant(rig) * 1e-9;
   s["sliding_distance_per_cycle_mm"] = bor::sliding_distance_per_cycle(rig) * 1e3;
   s["sarkar_factor"] = bor::sarkar_factor(rig.friction);
@@ -104,10 +167,11 @@ void run_bor(const BorOptions& o) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   io::write_json(out / "summary.json", s);
   io::run_plot("bor.py", {(out / "bor.csv").string(), (out / "bor.png").string(),
-                          "load " + fmt("%g", o.load_N) + " N, " + std::string(s["effect"])});
-  std::printf("block-on-ring %g N, %g cycles (%s): volume %.4f mm^3, depth %.4f mm, contact width "
+                          "load " + fmt("%g", o.load_N) + " N, " + std::string(s["effect"]) +
+                              (fe ? ", FE model" : "")});
+  std::printf("block-on-ring (%s) %g N, %g cycles (%s): volume %.4f mm^3, depth %.4f mm, contact width "
               "%.3f mm, mean pressure %.3f MPa -> %s\n",
-              o.load_N, o.cycles, std::string(s["effect"]).c_str(), last.volume * 1e9,
+              o.model.c_str(), o.load_N, o.cycles, std::string(s["effect"]).c_str(), last.volume * 1e9,
               last.depth * 1e3, last.contact_width * 1e3, last.mean_pressure * 1e-6,
               out.string().c_str());
 }
@@ -117,7 +181,21 @@ void run_bor(const BorOptions& o) {
 void add_bor_command(CLI::App& app) {
   auto opt = std::make_shared<BorOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "bor", "Block-on-ring semi-analytic wear model (Hussin 2024 rig; physics.md section 7)");
+      "bor", "Block-on-ring wear model, semi-analytic or FE (Hussin 2024 rig; physics.md section 7)");
+  cmd->add_option("--model", opt->model,
+                  "analytic (Winkler block, physics.md section 7) or fe (rigid ring on the "
+                  "deformable hex8 block, Archard only; docs/deformable.md)")
+      ->capture_default_str();
+  cmd->add_option("--update-every", opt->update_every,
+                  "fe: cycles between geometry updates")->capture_default_str();
+  cmd->add_option("--fe-element-mm", opt->fe_element_mm,
+                  "fe: element size under the ring [mm]")->capture_default_str();
+  cmd->add_option("--fe-axial-element-mm", opt->fe_axial_element_mm,
+                  "fe: element size along the ring axis [mm]")->capture_default_str();
+  cmd->add_option("--fe-max-steps", opt->fe_max_steps,
+                  "fe: relaxation steps allowed per geometry")->capture_default_str();
+  cmd->add_option("--threads", opt->threads, "fe: threads of the element loop")
+      ->capture_default_str()->check(CLI::Range(1, 64));
   cmd->add_option("--load-N", opt->load_N, "normal load [N]")->capture_default_str();
   cmd->add_option("--cycles", opt->cycles, "final cycle count [cycles]")->capture_default_str();
   cmd->add_option("--k", opt->k_mm3_per_Nmm, "steady-state wear factor k_D [mm^3/(N mm)]")

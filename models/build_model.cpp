@@ -464,7 +464,9 @@ BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
   m.contact.law = c.contact_law == "linear" ? engine::ContactLaw::kLinear
                                             : engine::ContactLaw::kNonlinear;
   m.contact.foundation_modulus =
-      engine::foundation_modulus(mat.elastic_modulus_MPa * 1e6, mat.poisson);
+      c.contact_foundation_modulus_MPa > 0.0
+          ? c.contact_foundation_modulus_MPa * 1e6  // calibrated (contact.law_file)
+          : engine::foundation_modulus(mat.elastic_modulus_MPa * 1e6, mat.poisson);
   m.contact.friction = friction;
   m.contact.slip_regularization = c.friction_regularization_mm_per_s * kMm;
   m.contact.runaway_fraction = c.runaway_fraction;

@@ -3,6 +3,7 @@
 // and assigned through the registry, so every error names file, line, key, value and the allowed
 // range.
 #include "models/config.h"
+#include "models/contact_law_file.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -202,6 +203,8 @@ Registry make_registry(Config& c) {
            100.0);
   r.number("contact.runaway_fraction", c.runaway_fraction, 0.01, 0.95);
   r.number("contact.friction", c.friction_override, 0.0, 1.0);
+  r.text("contact.law_file", c.contact_law_file);
+  r.number("contact.foundation_modulus_MPa", c.contact_foundation_modulus_MPa, 0.0, 1e6);
 
   r.choice("rig.preset", c.rig_preset, {"stanmore", "materials_study", "displacement", "iso"});
   for (int i = 0; i < 6; ++i) {
@@ -492,6 +495,13 @@ Config load_config(const std::filesystem::path& file, const std::vector<Override
     c.gait_file = c.rig_preset == "displacement"
                       ? "${KNEESIM_SOURCE}/loads/iso14243/iso14243_3_approx.csv"
                       : "${KNEESIM_SOURCE}/loads/iso14243/iso14243_1_approx.csv";
+  }
+  if (!c.contact_law_file.empty()) {
+    // the calibrated law replaces the law and modulus, for this material and implant only
+    const CalibratedContactLaw law = read_contact_law_file(
+        resolve_path(c, c.contact_law_file), c.material.name, implant_identity(c));
+    c.contact_law = law.law;
+    c.contact_foundation_modulus_MPa = law.foundation_modulus_MPa;
   }
   if (c.implant_kind == "mesh" && (c.femur_mesh.empty() || c.insert_mesh.empty())) {
     throw InputError((file.empty() ? std::string("config") : file.string()) +

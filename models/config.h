@@ -63,6 +63,10 @@ struct Config {
   double friction_regularization_mm_per_s = 5.0;
   double runaway_fraction = 0.5;           // max penetration / layer thickness [-]
   double friction_override = -1.0;         // >= 0 replaces the material's friction [-]
+  // a calibrated law file (models/contact_law_file.h, kneesim calibrate-contact): sets
+  // contact_law and contact_foundation_modulus_MPa; "" for the law as specified
+  std::string contact_law_file;
+  double contact_foundation_modulus_MPa = 0.0;  // > 0 replaces the material's K [MPa]
 
   // [rig]
   std::string rig_preset = "stanmore";     // "stanmore" | "materials_study" | "displacement" | "iso"

@@ -100,6 +100,8 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
   j["rig_preset"] = config.rig_preset;
   j["material"] = built.material.name;
   j["contact_law"] = config.contact_law;
+  j["contact_foundation_modulus_MPa"] = m.contact.foundation_modulus * 1e-6;
+  if (!config.contact_law_file.empty()) j["contact_law_file"] = config.contact_law_file;
   j["friction"] = m.contact.friction;
   j["integrator"] = config.integrator;
   j["gait_file"] = m.gait.source();

@@ -36,5 +36,6 @@ void add_compare_command(CLI::App& app);
 void add_bor_command(CLI::App& app);
 void add_diagnose_command(CLI::App& app);
 void add_study_command(CLI::App& app);
+void add_calibrate_command(CLI::App& app);
 
 }  // namespace kneesim::cli

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   kneesim::cli::add_bor_command(app);
   kneesim::cli::add_diagnose_command(app);
   kneesim::cli::add_study_command(app);
+  kneesim::cli::add_calibrate_command(app);
   // an unknown first word is a mistyped command, not a missing one (CLI11 would say "A
   // subcommand is required")
   std::string names;

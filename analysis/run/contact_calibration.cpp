@@ -67,7 +67,9 @@ TraceErrors compare_traces(const PressureTrace& r, const PressureTrace& d, doubl
   double sp = 0, dp = 0, sm = 0, dm = 0, sa = 0, da = 0;
   TraceErrors e;
   for (size_t i = 0; i < r.gait_pct.size(); ++i) {
-    if (std::abs(r.gait_pct[i] - d.gait_pct[i]) > 1e-6) {
+    // each run writes one row per 1 % of its cycle, at its own steps (the rigid and the
+    // deformable steps differ): rows are matched by index, within half a percent
+    if (std::abs(r.gait_pct[i] - d.gait_pct[i]) > 0.5) {
       throw std::invalid_argument("compare_traces: the two runs hold different frames");
     }
     if (r.gait_pct[i] < lo || r.gait_pct[i] > hi) continue;

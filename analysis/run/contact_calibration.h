@@ -34,8 +34,9 @@ struct TraceErrors {
   int frames = 0;      // frames compared
 };
 
-// rigid against deformable over lo <= gait_pct <= hi; frames matched by gait_pct (the two
-// traces must hold the same frames: std::invalid_argument otherwise)
+// rigid against deformable over lo <= gait_pct <= hi; rows matched by index, each run's 1 %
+// frames (std::invalid_argument when the row counts differ or a pair is more than half a
+// percent apart)
 TraceErrors compare_traces(const PressureTrace& rigid, const PressureTrace& deformable,
                            double lo_pct, double hi_pct);
 

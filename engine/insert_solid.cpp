@@ -100,7 +100,6 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
   ContactSummary sum;
   sum.cop_T = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   Eigen::Vector3d femur_force = Eigen::Vector3d::Zero(), femur_moment = Eigen::Vector3d::Zero();
-  Eigen::Vector3d damper_force = Eigen::Vector3d::Zero(), damper_moment = Eigen::Vector3d::Zero();
   std::array<double, 2> weight{};
   std::array<std::array<double, kNumDof>, 2> stiffness{};
   out.total_force.setZero();
@@ -125,8 +124,6 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
     const Eigen::Vector3d f_W = X_WT.linear() * (out.force[i] + out.friction_force[i]) + damp_W;
     femur_force -= f_W;
     femur_moment -= p_W.cross(f_W);
-    damper_force += damp_W;
-    damper_moment += p_W.cross(damp_W);
     const int side = solid.reference_positions[node].z() < 0.0 ? 0 : 1;  // medial: z < 0
     sum.normal_force[side] += p * area;
     sum.area[side] += area;
@@ -155,13 +152,10 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
   data.contact = sum;
   for (auto& row : data.friction_damping) row.fill(0.0);  // friction is on the nodes
 
-  // the tray carries what the base nodes hold: -f_int at each, in node order
-  Eigen::Vector3d tray_force = damper_force, tray_moment = damper_moment;
-  for (int b : model.insert_base_nodes) {
-    const Eigen::Vector3d f_W = X_WT.linear() * (-sd.internal_force[b]);
-    tray_force += f_W;
-    tray_moment += (X_WT * nodes.position[b]).cross(f_W);
-  }
+  // the tray carries the contact forces the insert receives (the opposite of the femur's
+  // load), not the reaction of the base nodes (see the file comment: the insert's scaled mass
+  // must not be coupled to the tray)
+  const Eigen::Vector3d tray_force = -femur_force, tray_moment = -femur_moment;
   data.contact.tray_force_W = tray_force;
   apply_wrench(state, data, 0, femur_force, femur_moment);
   apply_wrench(state, data, 1, tray_force, tray_moment);

@@ -17,10 +17,23 @@
 // a = dt c / m. That force is applied to the node as an external force and its opposite to the
 // femur, so the exchange conserves momentum exactly.
 //
-// Loads on the carriages: the femur carries the opposite of every node's contact force (normal
-// and friction) at the node; the tibial carriage carries the reaction of the base nodes, the
-// force the solid exerts on the tray, -f_int at each base node. In a quasi-static run the two
-// balance; their difference is the insert's own inertia and damping.
+// Loads on the carriages: the femur carries the opposite of every node's contact force
+// (normal, friction and the rig's contact damper) at the node, and the tibial carriage exactly
+// those forces, at the same points: to the carriages the insert is massless, as it is in this
+// frame, where the tray's motion puts no inertial force on it. The reaction of the base nodes
+// (-f_int, the force the solid exerts on the tray) is not what the tray carries: it differs
+// from the contact forces by the insert's inertia and damping, and coupling the tray to the
+// insert's mass in one direction only is not energy-consistent. For a tray of mass M on the
+// insert's shear stiffness k, the insert's surface (mass m) held by friction c to the femur:
+// with the base reaction, M X'' = k u and m u'' = -k u - c (u' + X') (the m X'' of an
+// inertial frame is missing), so the spring's power k u X' on the tray is returned by no term
+// of the insert's equation; with the contact forces, M X'' = -c (u' + X') and the exchange
+// sums to -c (u' + X')^2 <= 0. For the physical 35 g insert the difference is immeasurable;
+// mass-scaled to the default 20 us step the insert weighs 27 kg (2 mm elements) against the
+// tray's 2 kg, and the base reaction drove a friction-excited oscillation of the tibial
+// carriage's ML and VV DOFs at about 455 Hz (40 mm/s ML velocity, 14 um amplitude) that added
+// 37 % to the sliding work and the wear volume of the default run (docs/deformable.md, "Wear
+// on the deformable insert"; tools/bench/wear_sliding.cpp measures it).
 #pragma once
 
 #include "engine/data.h"

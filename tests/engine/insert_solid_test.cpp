@@ -56,8 +56,10 @@ TEST_CASE("deformable insert: the model ties the base to the tray and starts at 
 
 TEST_CASE("deformable insert: femur, solid and tray balance the applied load") {
   // 0.06 s of the gait (the axial load from 168 N to 1890 N at 3 % and 1530 N at 6 %):
-  // averaged over the last 0.02 s, the tray carries the femur's contact force up to the
-  // insert's own inertia and damping (reference: momentum balance; the scaled insert's kinetic
+  // the tray carries exactly the opposite of the femur's contact load at every step (the
+  // insert is massless to the carriages, engine/insert_solid.h; reference: momentum exchange);
+  // averaged over the last 0.02 s, the base nodes' reaction matches it up to the insert's own
+  // inertia and damping (reference: momentum balance of the solid; the scaled insert's kinetic
   // energy is small), and the contact force the applied load up to the femur's acceleration
   const models::BuiltModel built = models::build_model(coarse_deformable());
   const engine::Model& m = built.model;
@@ -65,20 +67,28 @@ TEST_CASE("deformable insert: femur, solid and tray balance the applied load") {
   engine::Data data = engine::make_data(m);
   const int steps = static_cast<int>(std::lround(0.06 / m.dt));
   const int window = static_cast<int>(std::lround(0.02 / m.dt));
-  double femur = 0.0, tray = 0.0, applied = 0.0;
+  double femur = 0.0, base = 0.0, applied = 0.0, worst_exchange = 0.0;
   for (int i = 0; i < steps; ++i) {
     REQUIRE(engine::step(m, state, data) == engine::StepStatus::kOk);
+    const Eigen::Vector3d exchange = data.contact.tray_force_W + data.contact.force_W;
+    worst_exchange = std::max(worst_exchange, exchange.norm());
     if (i >= steps - window) {
+      Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
+      for (int b : m.insert_base_nodes) {
+        reaction -= data.X_WT.linear() * data.insert_solid.internal_force[b];
+      }
       femur += data.contact.force_W.y() / window;
-      tray += data.contact.tray_force_W.y() / window;
+      base += reaction.y() / window;
       applied += -data.applied[0][1] / window;
     }
   }
   MESSAGE("mean over 0.04-0.06 s: applied " << applied << " N, contact on the femur " << femur
-          << " N, tray " << tray << " N");
+          << " N, base reaction " << base << " N; largest |tray + femur| " << worst_exchange
+          << " N");
   CHECK(applied > 1000.0);
   CHECK(femur == doctest::Approx(applied).epsilon(0.05));
-  CHECK(-tray == doctest::Approx(femur).epsilon(0.05));
+  CHECK(worst_exchange < 1e-9 * applied);
+  CHECK(-base == doctest::Approx(femur).epsilon(0.05));
 }
 
 TEST_CASE("deformable insert: bit-identical on 1 and 2 threads") {

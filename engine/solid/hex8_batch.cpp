@@ -147,7 +147,7 @@ inline __attribute__((always_inline)) void batch_kernel(
                           F[i][2] * S[kVoigt[2][j]]);
   // hourglass: q_m = (sum_a h_m,a x_a - F hX_m) / 8, kq_m = K_m q_m, G = sum_m kq_m hX_m^T
   Vec hX[kHourglassModes][3], kq[kHourglassModes][3];
-  Vec hourglass_energy_2;
+  Vec hourglass_energy_2 = {};  // set by mode 0 below; initialized so gcc -O1 sees it
   for (int m = 0; m < kHourglassModes; ++m) {
     for (int j = 0; j < 3; ++j) hX[m][j] = load(ref.hourglass_moment[m][j]);
     Vec q[3];

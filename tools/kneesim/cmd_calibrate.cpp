@@ -6,7 +6,6 @@
 // The fit uses the first half of stance (0-30 % of the cycle); the second half (30-60 %) is
 // the held-out judgement. The runs are kept in DIR/deformable, DIR/rigid (as specified) and
 // DIR/rigid_calibrated.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -38,10 +37,6 @@ struct CalibrateArgs {
 };
 
 constexpr double kFitLo = 0.0, kFitHi = 30.0, kHeldLo = 30.0, kHeldHi = 60.0;
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 nlohmann::json errors_json(const run::TraceErrors& e) {
   return {{"peak_pressure_rms", e.peak}, {"mean_pressure_rms", e.mean},

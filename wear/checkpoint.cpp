@@ -13,8 +13,9 @@
 namespace kneesim::wear {
 namespace {
 
-// v3: records of 16 fields and the deformable insert's state
-constexpr char kMagic[16] = "kneesim-wear-v3";
+// v4: records of 18 fields (v3: 16, without the energy ratios) and the deformable insert's
+// state
+constexpr char kMagic[16] = "kneesim-wear-v4";
 
 class Writer {
  public:

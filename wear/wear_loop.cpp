@@ -8,6 +8,7 @@
 
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
+#include "engine/solid/energy_ratio.h"
 #include "wear/checkpoint.h"
 #include "wear/geometry_update.h"
 #include "wear/worn_insert.h"
@@ -59,12 +60,14 @@ std::string check_update_record(const UpdateRecord& r, bool closed_insert) {
                            r.medial_volume, r.lateral_volume, r.contact_area,
                            r.peak_pressure, r.mean_peak_pressure, r.ap_rom, r.ie_rom,
                            r.von_mises_surface, r.von_mises_subsurface,
-                           r.plastic_strain_surface, r.plastic_strain_subsurface};
+                           r.plastic_strain_surface, r.plastic_strain_subsurface,
+                           r.kinetic_to_internal_max, r.kinetic_to_internal_cycle};
   const char* names[] = {"volume",       "volume_depth",  "max_depth",
                          "medial_volume", "lateral_volume", "contact_area",
                          "peak_pressure", "mean_peak_pressure", "ap_rom", "ie_rom",
                          "von_mises_surface", "von_mises_subsurface",
-                         "plastic_strain_surface", "plastic_strain_subsurface"};
+                         "plastic_strain_surface", "plastic_strain_subsurface",
+                         "kinetic_to_internal_max", "kinetic_to_internal_cycle"};
   const long cycles = static_cast<long>(r.cycles);
   for (size_t i = 0; i < std::size(fields); ++i) {
     if (!std::isfinite(fields[i])) {
@@ -93,28 +96,50 @@ namespace {
 // stability ratio above which the next update gets a shorter step
 constexpr double kStabilityHeadroom = 0.9;
 
+// what a simulated cycle of the deformable insert leaves besides its frames: each element's
+// largest von Mises stress [Pa] and the solid's kinetic and internal energy per step [J]
+struct SolidCycle {
+  std::vector<double> von_mises_max;
+  std::vector<double> kinetic, internal;
+};
+
 // one gait cycle on the current geometry from `state` (advanced on success); wear makes the
 // insert more conforming and the contact stiffer, so when the stability monitor trips the cycle
 // is repeated with the step the measured frequency allows, and a cycle close to the limit
 // shortens the step of the next one. `acc` (may be null) accumulates the cycle's wear depth;
-// `von_mises_max` (deformable insert) receives each element's largest von Mises stress [Pa].
+// `cycle` receives the deformable insert's per-cycle figures.
 engine::RunResult simulate_cycle(engine::Model& model, engine::State& state, double dt_safety,
                                  const WearLawParams& law, WearAccumulator* acc,
-                                 std::vector<double>& von_mises_max) {
+                                 SolidCycle& cycle) {
   engine::RunOptions ro;
   ro.cycles = 1;
   const bool solid = !model.insert_solid.empty();
-  von_mises_max.assign(model.insert_solid.num_elements(), 0.0);
-  ro.observer = [acc, solid, &von_mises_max](const engine::Model& m, const engine::State& s,
-                                            const engine::Data& d) {
+  cycle.von_mises_max.assign(model.insert_solid.num_elements(), 0.0);
+  const auto reserve = [&cycle, &model, solid] {
+    cycle.kinetic.clear();
+    cycle.internal.clear();
+    if (!solid) return;
+    const size_t steps = static_cast<size_t>(std::lround(model.period / model.dt)) + 2;
+    cycle.kinetic.reserve(steps);
+    cycle.internal.reserve(steps);
+  };
+  reserve();
+  ro.observer = [acc, solid, &cycle](const engine::Model& m, const engine::State& s,
+                                     const engine::Data& d) {
     if (acc) observe_wear(*acc, m, s, d);
     if (!solid) return;
-    const std::vector<double>& vm = d.insert_solid.von_mises;
-    for (size_t e = 0; e < vm.size(); ++e) von_mises_max[e] = std::max(von_mises_max[e], vm[e]);
+    const engine::solid::SolidData& sd = d.insert_solid;
+    const std::vector<double>& vm = sd.von_mises;
+    for (size_t e = 0; e < vm.size(); ++e) {
+      cycle.von_mises_max[e] = std::max(cycle.von_mises_max[e], vm[e]);
+    }
+    cycle.kinetic.push_back(sd.kinetic_energy);
+    cycle.internal.push_back(sd.total_strain_energy + sd.total_plastic_work);
   };
-  const std::function<void()> reset = [acc, &model, &law, &von_mises_max] {
+  const std::function<void()> reset = [acc, &model, &law, &cycle, &reserve] {
     if (acc) *acc = make_accumulator(model, law);
-    std::fill(von_mises_max.begin(), von_mises_max.end(), 0.0);
+    std::fill(cycle.von_mises_max.begin(), cycle.von_mises_max.end(), 0.0);
+    reserve();
   };
   const engine::RunResult run = engine::simulate_with_retry(model, state, ro, dt_safety, 4, reset);
   if (run.status == engine::StepStatus::kOk && run.max_stability_ratio > kStabilityHeadroom) {
@@ -126,9 +151,9 @@ engine::RunResult simulate_cycle(engine::Model& model, engine::State& state, dou
 }
 
 // the deformable insert's stress and plastic-strain maxima of a cycle, surface layer (the
-// elements under the top faces) and subsurface, into the record
+// elements under the top faces) and subsurface, and its energy ratios, into the record
 void fill_solid_figures(const engine::Model& model, const engine::State& state,
-                        const std::vector<double>& von_mises_max, UpdateRecord& r) {
+                        const SolidCycle& cycle, UpdateRecord& r) {
   const int n = model.insert_solid.num_elements();
   std::vector<unsigned char> surface(n, 0);
   for (int e : model.insert_top_face_element) surface[e] = 1;
@@ -137,18 +162,22 @@ void fill_solid_figures(const engine::Model& model, const engine::State& state,
   for (int e = 0; e < n; ++e) {
     double& vm = surface[e] ? r.von_mises_surface : r.von_mises_subsurface;
     double& ep = surface[e] ? r.plastic_strain_surface : r.plastic_strain_subsurface;
-    vm = std::max(vm, von_mises_max[e]);
+    vm = std::max(vm, cycle.von_mises_max[e]);
     ep = std::max(ep, state.insert_solid.alpha[e]);
   }
+  const engine::solid::EnergyRatio energy =
+      engine::solid::calc_energy_ratio(cycle.kinetic, cycle.internal);
+  r.kinetic_to_internal_max = energy.max;
+  r.kinetic_to_internal_cycle = energy.cycle;
 }
 
 // the last record gets the figures of a cycle simulated on its geometry and is complete
 void complete_record(const engine::RunResult& run, const engine::Model& model,
-                     const engine::State& state, const std::vector<double>& von_mises_max,
-                     WearResult& result, const std::vector<double>& depth, const WearOptions& o) {
+                     const engine::State& state, const SolidCycle& cycle, WearResult& result,
+                     const std::vector<double>& depth, const WearOptions& o) {
   fill_cycle_figures(run.frames, result.records.back());
   if (!model.insert_solid.empty()) {
-    fill_solid_figures(model, state, von_mises_max, result.records.back());
+    fill_solid_figures(model, state, cycle, result.records.back());
   }
   result.frames = run.frames;
   if (o.on_update) o.on_update(result.records, depth);
@@ -172,7 +201,7 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
       insert.kind == InsertKind::kDeformable || pristine.implant.insert_volume > 0.0;
   std::vector<double> depth(sites0.size(), 0.0);
   engine::State state = engine::make_initial_state(model);
-  std::vector<double> von_mises_max;  // per element over the last cycle (deformable) [Pa]
+  SolidCycle cycle;  // the deformable insert's figures of the last simulated cycle
   long cycles_done = 0;
   int u = 0;
 
@@ -219,14 +248,14 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
     // one cycle on the current geometry, accumulating the per-cycle depth
     WearAccumulator acc = make_accumulator(model, o.law);
     const engine::RunResult run =
-        simulate_cycle(model, state, pristine.dt_safety, o.law, &acc, von_mises_max);
+        simulate_cycle(model, state, pristine.dt_safety, o.law, &acc, cycle);
     if (run.status != engine::StepStatus::kOk) {
       result.status = run.status;
       result.message = engine::to_string(run.status);
       break;
     }
     // the cycle's kinematics and contact describe the geometry it ran on: the last record's
-    complete_record(run, model, state, von_mises_max, result, depth, o);
+    complete_record(run, model, state, cycle, result, depth, o);
     const std::vector<double> per_cycle = calc_site_depth(model, acc);
 
     // scale by the cycles of this update; halve them while a face or element would fold
@@ -301,12 +330,12 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
   // the last geometry's kinematics and contact: one more cycle on it, no wear accumulated
   if (result.status == engine::StepStatus::kOk) {
     const engine::RunResult run =
-        simulate_cycle(model, state, pristine.dt_safety, o.law, nullptr, von_mises_max);
+        simulate_cycle(model, state, pristine.dt_safety, o.law, nullptr, cycle);
     if (run.status != engine::StepStatus::kOk) {
       result.status = run.status;
       result.message = std::string(engine::to_string(run.status)) + " in the cycle on the final geometry";
     } else {
-      complete_record(run, model, state, von_mises_max, result, depth, o);
+      complete_record(run, model, state, cycle, result, depth, o);
     }
   }
   result.vertex_depth = depth;
@@ -314,7 +343,7 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
   result.worn_insert = std::move(insert);
   result.final_model = std::move(model);
   result.final_state = std::move(state);
-  result.von_mises_max = std::move(von_mises_max);
+  result.von_mises_max = std::move(cycle.von_mises_max);
   return result;
 }
 

@@ -47,7 +47,11 @@ struct UpdateRecord {
   double von_mises_subsurface = 0; // [Pa]
   double plastic_strain_surface = 0;     // [-]
   double plastic_strain_subsurface = 0;  // [-]
-  static constexpr int kFields = 16;
+  // the solid's kinetic/internal energy ratio over the cycle (engine/solid/energy_ratio.h):
+  // largest over the loaded steps, and of the cycle sums (quasi-static validity, below 5 %)
+  double kinetic_to_internal_max = 0;    // [-]
+  double kinetic_to_internal_cycle = 0;  // [-]
+  static constexpr int kFields = 18;
 };
 
 // the enclosed-volume loss and the depth integral of a closed insert differ by this fraction

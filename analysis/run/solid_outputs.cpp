@@ -4,6 +4,7 @@
 
 #include "engine/io/vtp.h"
 #include "engine/io/vtu.h"
+#include "engine/solid/energy_ratio.h"
 #include "engine/step.h"
 
 namespace kneesim::run {
@@ -54,25 +55,15 @@ nlohmann::json describe_solid_cycle(const engine::Model& model, const engine::St
       ep_sub = std::max(ep_sub, ep);
     }
   }
-  // energy ratio: the largest kinetic/internal ratio over the steps where the internal energy
-  // is at least a tenth of the cycle's largest (swing, nearly unloaded, is left out), and the
-  // ratio of the cycle sums
-  double internal_max = 0.0, kinetic_sum = 0.0, internal_sum = 0.0, ratio_max = 0.0;
-  for (double u : tracker.internal) internal_max = std::max(internal_max, u);
-  for (size_t i = 0; i < tracker.internal.size(); ++i) {
-    kinetic_sum += tracker.kinetic[i];
-    internal_sum += tracker.internal[i];
-    if (tracker.internal[i] >= 0.1 * internal_max && tracker.internal[i] > 0.0) {
-      ratio_max = std::max(ratio_max, tracker.kinetic[i] / tracker.internal[i]);
-    }
-  }
+  const engine::solid::EnergyRatio energy =
+      engine::solid::calc_energy_ratio(tracker.kinetic, tracker.internal);
   nlohmann::json j = describe_solid_model(model);
   j["von_mises_max_surface_MPa"] = vm_surface * 1e-6;
   j["von_mises_max_subsurface_MPa"] = vm_sub * 1e-6;
   j["plastic_strain_max_surface"] = ep_surface;
   j["plastic_strain_max_subsurface"] = ep_sub;
-  j["kinetic_to_internal_max"] = ratio_max;
-  j["kinetic_to_internal_cycle"] = internal_sum > 0.0 ? kinetic_sum / internal_sum : 0.0;
+  j["kinetic_to_internal_max"] = energy.max;
+  j["kinetic_to_internal_cycle"] = energy.cycle;
   return j;
 }
 

@@ -1,0 +1,35 @@
+// The kinetic/internal energy ratio of a simulated cycle of the solid: the quasi-static
+// validity measure of a mass-scaled run (issue 11: below 5 %). A pure kernel shared by
+// `kneesim run` (analysis/run/solid_outputs.h) and the wear loop (wear/wear_loop.h).
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+namespace kneesim::engine::solid {
+
+struct EnergyRatio {
+  double max = 0.0;    // largest kinetic/internal ratio over the steps whose internal energy is
+                       // at least a tenth of the cycle's largest (swing, nearly unloaded, is
+                       // left out) [-]
+  double cycle = 0.0;  // sum of the kinetic over the sum of the internal energy [-]
+};
+
+// kinetic [J] and internal energy (elastic + hourglass + plastic work) [J] per step
+inline EnergyRatio calc_energy_ratio(const std::vector<double>& kinetic,
+                                     const std::vector<double>& internal) {
+  double internal_max = 0.0, kinetic_sum = 0.0, internal_sum = 0.0;
+  EnergyRatio r;
+  for (double u : internal) internal_max = std::max(internal_max, u);
+  for (size_t i = 0; i < internal.size() && i < kinetic.size(); ++i) {
+    kinetic_sum += kinetic[i];
+    internal_sum += internal[i];
+    if (internal[i] >= 0.1 * internal_max && internal[i] > 0.0) {
+      r.max = std::max(r.max, kinetic[i] / internal[i]);
+    }
+  }
+  r.cycle = internal_sum > 0.0 ? kinetic_sum / internal_sum : 0.0;
+  return r;
+}
+
+}  // namespace kneesim::engine::solid

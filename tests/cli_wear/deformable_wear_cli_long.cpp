@@ -6,10 +6,10 @@
 //    path's issue-3 acceptance);
 //  - the deformable insert spreads the load: lower peak pressure and a larger contact area than
 //    the rigid insert in the same rig (docs/deformable.md).
-// The wear volume of both is printed, not checked: the hypothesis that it matches the rigid
-// insert's within 10 % (Archard's volume is k times the sliding work) failed when measured
-// (97.7 against 68.6 mm^3, +42 %, on the stanmore rig; +15 % under materials_study): the
-// deformable insert's sliding work is larger, and why is not established yet (docs/deformable.md).
+//  - Archard's volume is k sqrt(1 + 3 mu^2) times the sliding work, which does not depend on
+//    how the pressure spreads: the deformable volume within 10 % of the rigid one's (it was
+//    +42 % before the tray carried the contact forces, engine/insert_solid.h; after, +2.0 %;
+//    docs/deformable.md "Why the deformable insert wore more than the rigid one").
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -50,4 +50,5 @@ TEST_CASE("deformable wear at the real size: bookkeeping and Archard volume agai
   CHECK(sd["peak_pressure_MPa"].get<double>() < sr["peak_pressure_MPa"].get<double>());
   CHECK(sd["contact_area_mm2"].get<double>() > sr["contact_area_mm2"].get<double>());
   CHECK(sd["max_depth_mm"].get<double>() > 0.0);
+  CHECK(vd == doctest::Approx(vr).epsilon(0.10));
 }

@@ -20,9 +20,14 @@
 // patch's spread over the arc (its slip is cos(phi) of the centre's, phi <= a / R_i: 0.2 %),
 // the penalty layer's compliance for the deformable insert (its nodes sit up to the
 // penetration closer to the femoral centre) and the elastic micro-slip at the two reversals.
-// The deformable insert before the fix (tray loaded by the base reaction) gave +14 %
-// (tools/bench/wear_sliding.cpp, docs/deformable.md).
+// Measured: rigid +0.12 %, deformable +0.67 %; the deformable insert before the fix (tray
+// loaded by the base reaction, 051699a's engine/insert_solid.cpp) +14.1 %, which this test
+// fails. The cycle is 1 s: at 0.5 s that coupling did not oscillate in this rig and the test
+// would not have told the two apart (tools/bench/wear_sliding.cpp, docs/deformable.md).
 #include <doctest/doctest.h>
+
+// (relative checks written out: doctest's Approx adds a scale of 1 to its tolerance, which for
+// volumes of 1e-10 m^3 would accept anything)
 
 #include <cmath>
 #include <cstdio>
@@ -63,7 +68,7 @@ Outcome run(const test::TempDir& dir, std::vector<models::Override> extra) {
   std::string gait = "\"";  // a TOML string (built by appends: GCC 12's -Wrestrict misfires)
   gait.append(dir.write("sliding.csv", sliding_gait()).string()).append("\"");
   std::vector<models::Override> o = {
-      {"rig.preset", "\"displacement\""}, {"gait.file", gait}, {"gait.period_s", "0.5"}};
+      {"rig.preset", "\"displacement\""}, {"gait.file", gait}, {"gait.period_s", "1"}};
   o.insert(o.end(), extra.begin(), extra.end());
   const models::Config config = test::coarse_config(o);
   const models::BuiltModel built = models::build_model(config);
@@ -98,14 +103,14 @@ TEST_CASE("sliding under a constant load: both inserts' Archard volume is k sqrt
   const test::TempDir dir;
   SUBCASE("rigid insert") {
     const Outcome o = run(dir, {});
-    CHECK(o.volume_depth == doctest::Approx(o.reference).epsilon(0.03));
+    CHECK(std::abs(o.volume_depth / o.reference - 1.0) < 0.03);
   }
   SUBCASE("deformable insert") {
     const Outcome o = run(dir, {{"insert", "\"deformable\""},
                                 {"deformable.element_size_mm", "3"},
                                 {"deformable.layers", "3"}});
-    CHECK(o.volume_depth == doctest::Approx(o.reference).epsilon(0.03));
+    CHECK(std::abs(o.volume_depth / o.reference - 1.0) < 0.03);
     // the hex mesh lost what the depth field says (the bookkeeping of the wear loop)
-    CHECK(o.volume == doctest::Approx(o.volume_depth).epsilon(0.01));
+    CHECK(std::abs(o.volume / o.volume_depth - 1.0) < 0.01);
   }
 }

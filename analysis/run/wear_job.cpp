@@ -14,6 +14,7 @@
 #include "analysis/run/run_outputs.h"
 #include "analysis/run/solid_outputs.h"
 #include "engine/errors.h"
+#include "engine/io/atomic_file.h"
 #include "engine/io/json_out.h"
 #include "engine/io/output_folder.h"
 #include "engine/io/plot.h"
@@ -280,6 +281,22 @@ nlohmann::json run_wear_job(const WearJob& j) {
   check_wear_job(j);
   const auto t0 = std::chrono::steady_clock::now();
   bool resume = j.resume;
+  const uint64_t identity = wear::fnv1a(j.identity_text.data(), j.identity_text.size());
+  char identity_hex[17];
+  std::snprintf(identity_hex, sizeof identity_hex, "%016llx",
+                static_cast<unsigned long long>(identity));
+  if (resume && !fs::exists(j.out / "wear.checkpoint") && fs::exists(j.out / "summary.json")) {
+    // finished before the interruption (the checkpoint goes when a run completes): the same
+    // run's summary is its result, another run's is not (it is started afresh below)
+    // (an unreadable summary is not a result: parse without exceptions, discarded -> afresh)
+    const nlohmann::json done =
+        nlohmann::json::parse(io::read_file(j.out / "summary.json"), nullptr, false);
+    if (done.is_object() && done.value("status", "") == "complete" && done.value("run_identity", "") == identity_hex) {
+      if (!j.quiet) std::fprintf(stderr, "%s is complete: nothing to resume\n",
+                                 j.out.string().c_str());
+      return done;
+    }
+  }
   if (resume && !fs::exists(j.out / "wear.checkpoint")) {
     // killed before the first update finished: nothing to resume, start afresh
     if (!j.quiet) std::fprintf(stderr, "no checkpoint in %s yet: starting from cycle 0\n",
@@ -297,7 +314,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
   wear::WearOptions o = make_wear_options(j, built);
   o.checkpoint = j.out / "wear.checkpoint";
   o.resume = resume;
-  o.identity = wear::fnv1a(j.identity_text.data(), j.identity_text.size());
+  o.identity = identity;
   io::ProgressBar bar("wear " + mat.name);
   if (!j.quiet) o.progress = [&bar](double f) { bar.update(f); };
   o.on_update = [&](const std::vector<wear::UpdateRecord>& records,
@@ -315,6 +332,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   nlohmann::json summary = describe_model(built, j.config);
+  summary["run_identity"] = identity_hex;  // what --resume matches a finished run against
   summary["cycles"] = j.cycles;
   summary["update_every"] = j.update_every;
   summary["updates"] = static_cast<int>(result.records.size()) - 1;

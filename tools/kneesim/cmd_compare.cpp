@@ -27,6 +27,7 @@ struct CompareArgs {
   std::vector<std::string> sets;
   int jobs = 0;
   bool quiet = false;
+  bool resume = false;
 };
 
 void run(const CompareArgs& a) {
@@ -45,8 +46,13 @@ void run(const CompareArgs& a) {
     job.out = fs::path(a.out) / m;
     job.quiet = true;
     job.depth_maps = false;
+    job.resume = a.resume;
+    // what defines this material's run: the config's text, the overrides, the material and
+    // the schedule (a checkpoint or finished run of anything else is not resumed)
     std::ostringstream id;
-    id << "compare v1 " << m << " " << a.cycles << " " << a.update_every;
+    id << "compare v2\n" << (a.config.empty() ? std::string() : io::read_file(a.config)) << "\n";
+    for (const auto& s : a.sets) id << s << "\n";
+    id << m << " " << a.cycles << " " << a.update_every;
     job.identity_text = id.str();
     run::check_wear_job(job);
     jobs.push_back(std::move(job));
@@ -151,7 +157,8 @@ void add_compare_command(CLI::App& app) {
       "The same wear simulation for several insert materials, concurrently (default: uhmwpe, "
       "peek, cfr-peek; 5 million cycles). Writes DIR/comparison.csv, DIR/comparison.md, "
       "DIR/comparison.json, plots (compare_wear.png, compare_kinematics.png, "
-      "compare_contact.png) and each material's wear outputs in DIR/<material>/. With --set "
+      "compare_contact.png) and each material's wear outputs in DIR/<material>/, each "
+      "checkpointed at every update (--resume continues a killed comparison). With --set "
       "insert=deformable the table adds the von Mises and plastic-strain maxima.");
   cmd->add_option("config", args->config, "TOML config file")->check(CLI::ExistingFile);
   cmd->add_option("--materials", args->materials, "comma-separated material names")
@@ -167,6 +174,9 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--jobs", args->jobs, "materials simulated at once (default: all cores)")
       ->check(finite_range(1, 1024));
   cmd->add_flag("--quiet", args->quiet, "no per-material lines or table");
+  cmd->add_flag("--resume", args->resume,
+                "continue a killed comparison: each material from its DIR/<material>/"
+                "wear.checkpoint, a material that had finished from its summary.json");
   cmd->callback([args] {
     io::check_output_folder(args->out);  // before any work
     run(*args);

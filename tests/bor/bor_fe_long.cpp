@@ -31,7 +31,7 @@ TEST_CASE("block-on-ring FE: worn volume within 5 % of the semi-analytic model t
               << a.contact_width * 1e3 << " mm; mean pressure " << f.mean_pressure * 1e-6
               << " / " << a.mean_pressure * 1e-6 << " MPa; ring reaction "
               << fe[i].contact_force << " N");
-      CHECK(f.volume == doctest::Approx(a.volume).epsilon(0.05));
+      CHECK(f.volume == doctest::Approx(a.volume).epsilon(0.05).scale(0));
       CHECK(fe[i].contact_force == doctest::Approx(load).epsilon(1e-3));
     }
   }

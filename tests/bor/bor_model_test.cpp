@@ -24,21 +24,21 @@ TEST_CASE("foundation constant and Sarkar factor of the Hussin rig") {
   // physics.md: C ~ 81.5 MPa/mm with E 690 MPa, nu 0.317, h 12 mm
   CHECK(foundation_constant(rig) * kMm / kMPa == doctest::Approx(81.5).epsilon(0.001));
   // physics.md section 6: 1.053 for mu 0.19, 1.007 for mu 0.07
-  CHECK(sarkar_factor(0.19) == doctest::Approx(1.053).epsilon(0.0005));
-  CHECK(sarkar_factor(0.07) == doctest::Approx(1.007).epsilon(0.0005));
+  CHECK(sarkar_factor(0.19) == doctest::Approx(1.053).epsilon(0.0005).scale(0));
+  CHECK(sarkar_factor(0.07) == doctest::Approx(1.007).epsilon(0.0005).scale(0));
   CHECK(sarkar_factor(0.0) == 1.0);
 }
 
 TEST_CASE("unworn contact reproduces physics.md section 7 at 225 N and 130 N") {
   const BorRig rig;
   const BorContact c225 = solve_bor_contact(rig, 225.0, 0.0);
-  CHECK(c225.contact_width / 2.0 / kMm == doctest::Approx(1.93).epsilon(0.005 / 1.93));
-  CHECK(c225.penetration / kMm == doctest::Approx(0.107).epsilon(0.0005 / 0.107));
-  CHECK(c225.mean_pressure / kMPa == doctest::Approx(5.8).epsilon(0.05 / 5.8));
+  CHECK(c225.contact_width / 2.0 / kMm == doctest::Approx(1.93).epsilon(0.005 / 1.93).scale(0));
+  CHECK(c225.penetration / kMm == doctest::Approx(0.107).epsilon(0.0005 / 0.107).scale(0));
+  CHECK(c225.mean_pressure / kMPa == doctest::Approx(5.8).epsilon(0.05 / 5.8).scale(0));
   const BorContact c130 = solve_bor_contact(rig, 130.0, 0.0);
-  CHECK(c130.contact_width / 2.0 / kMm == doctest::Approx(1.61).epsilon(0.005 / 1.61));
-  CHECK(c130.penetration / kMm == doctest::Approx(0.074).epsilon(0.0005 / 0.074));
-  CHECK(c130.mean_pressure / kMPa == doctest::Approx(4.0).epsilon(0.05 / 4.0));
+  CHECK(c130.contact_width / 2.0 / kMm == doctest::Approx(1.61).epsilon(0.005 / 1.61).scale(0));
+  CHECK(c130.penetration / kMm == doctest::Approx(0.074).epsilon(0.0005 / 0.074).scale(0));
+  CHECK(c130.mean_pressure / kMPa == doctest::Approx(4.0).epsilon(0.05 / 4.0).scale(0));
   // equilibrium invariant: F = C R_c^2 w seg(theta)
   const double rc = rig.ring_radius;
   CHECK(foundation_constant(rig) * rc * rc * rig.ring_width * segment_factor(c225.theta) ==
@@ -52,12 +52,12 @@ TEST_CASE("Archard volume at 200 000 cycles is 2.03 and 1.17 mm^3") {
   CHECK(s / kMm == doctest::Approx(M_PI * 35.0));
   // printed to two decimals: tolerance 0.005 mm^3
   CHECK(closed_form_volume(BorWearLaw::archard, p, 225.0, s, 2e5) / kMm3 ==
-        doctest::Approx(2.03).epsilon(0.005 / 2.03));
+        doctest::Approx(2.03).epsilon(0.005 / 2.03).scale(0));
   CHECK(closed_form_volume(BorWearLaw::archard, p, 130.0, s, 2e5) / kMm3 ==
-        doctest::Approx(1.17).epsilon(0.005 / 1.17));
+        doctest::Approx(1.17).epsilon(0.005 / 1.17).scale(0));
   // the full solve carries the same volume through the geometry
   const auto rows = simulate_bor(rig, 225.0, BorWearLaw::archard, p, {0.0, 2e5});
-  CHECK(rows[1].volume / kMm3 == doctest::Approx(2.0287).epsilon(1e-4));
+  CHECK(rows[1].volume / kMm3 == doctest::Approx(2.0287).epsilon(1e-4).scale(0));
 }
 
 TEST_CASE("worn contact satisfies all three equations from 0 to 1e6 cycles") {
@@ -74,9 +74,10 @@ TEST_CASE("worn contact satisfies all three equations from 0 to 1e6 cycles") {
       CAPTURE(load);
       CAPTURE(r.cycles);
       // scar spans the contact, circular-segment volume, foundation equilibrium
-      CHECK(rc * std::sin(r.theta) == doctest::Approx(r.scar_radius * std::sin(r.theta_scar)));
+      CHECK(rc * std::sin(r.theta) ==
+            doctest::Approx(r.scar_radius * std::sin(r.theta_scar)).scale(0));
       CHECK(r.scar_radius * r.scar_radius * segment_factor(r.theta_scar) * w ==
-            doctest::Approx(r.volume).epsilon(1e-9));
+            doctest::Approx(r.volume).epsilon(1e-9).scale(0));
       CHECK(cf * (rc * rc * segment_factor(r.theta) * w - r.volume) ==
             doctest::Approx(load).epsilon(1e-9));
       // the scar is flatter than the ring, depth and width grow, pressure falls
@@ -94,10 +95,11 @@ TEST_CASE("tiny wear tends to the unworn contact and a shallow scar") {
   const BorRig rig;
   const BorContact c0 = solve_bor_contact(rig, 225.0, 0.0);
   const BorContact c = solve_bor_contact(rig, 225.0, 1e-6 * kMm3);
-  CHECK(c.theta == doctest::Approx(c0.theta).epsilon(1e-6));
+  CHECK(c.theta == doctest::Approx(c0.theta).epsilon(1e-6).scale(0));
   // flat-scar limit: V = (2/3) a^2 theta' w with a the half-width, depth = 3 V / (4 a w)
   const double a = c.contact_width / 2.0;
-  CHECK(c.scar_depth == doctest::Approx(0.75 * c.volume / (a * rig.ring_width)).epsilon(1e-5));
+  CHECK(c.scar_depth ==
+        doctest::Approx(0.75 * c.volume / (a * rig.ring_width)).epsilon(1e-5).scale(0));
 }
 
 TEST_CASE("running-in and creep laws against their closed forms") {
@@ -109,10 +111,10 @@ TEST_CASE("running-in and creep laws against their closed forms") {
   const double per = p.k * 225.0 * s;
   // long after running-in, the curve is the steady line offset by a N_r k F S
   const double v = closed_form_volume(BorWearLaw::running_in, p, 225.0, s, 3e5);
-  CHECK(v == doctest::Approx(per * (3e5 + 2.0 * 1e4)).epsilon(1e-9));
+  CHECK(v == doctest::Approx(per * (3e5 + 2.0 * 1e4)).epsilon(1e-9).scale(0));
   // initial rate is (1 + a) k F S
   CHECK(closed_form_volume(BorWearLaw::running_in, p, 225.0, s, 1.0) ==
-        doctest::Approx(3.0 * per).epsilon(1e-4));
+        doctest::Approx(3.0 * per).epsilon(1e-4).scale(0));
   // creep: volume as Archard, depth above the wear-only depth by phi delta_el (1 - e^-t/tau)
   p.creep_ratio = 0.5;
   p.creep_time = 3600.0;
@@ -122,7 +124,7 @@ TEST_CASE("running-in and creep laws against their closed forms") {
   const double delta_el = solve_bor_contact(rig, 225.0, 0.0).penetration;
   const double t = 6e4 * 60.0 / 1000.0;
   CHECK(crept[0].depth - wear_only[0].depth ==
-        doctest::Approx(0.5 * delta_el * (1.0 - std::exp(-t / 3600.0))).epsilon(1e-12));
+        doctest::Approx(0.5 * delta_el * (1.0 - std::exp(-t / 3600.0))).epsilon(1e-12).scale(0));
 }
 
 TEST_CASE("pressure-dependent wear: CVODE path, table path and the alpha = 0 limit agree") {
@@ -139,14 +141,14 @@ TEST_CASE("pressure-dependent wear: CVODE path, table path and the alpha = 0 lim
       closed_form_volume(BorWearLaw::archard, p, 130.0, sliding_distance_per_cycle(rig), 2e5);
   for (size_t i = 1; i < cycles.size(); ++i) {
     CAPTURE(cycles[i]);
-    CHECK(fast[i].volume == doctest::Approx(ref[i].volume).epsilon(1e-4));
-    CHECK(fast[i].depth == doctest::Approx(ref[i].depth).epsilon(1e-4));
+    CHECK(fast[i].volume == doctest::Approx(ref[i].volume).epsilon(1e-4).scale(0));
+    CHECK(fast[i].depth == doctest::Approx(ref[i].depth).epsilon(1e-4).scale(0));
   }
   // at 130 N the pressure is below p_ref, so alpha = 1 wears faster than Archard
   CHECK(ref[3].volume > 1.3 * archard_200k);
   p.pressure_exponent = 0.0;
   const auto flat = simulate_bor(rig, 130.0, BorWearLaw::pressure_dependent_wear, p, cycles);
-  CHECK(flat[3].volume == doctest::Approx(archard_200k).epsilon(1e-7));
+  CHECK(flat[3].volume == doctest::Approx(archard_200k).epsilon(1e-7).scale(0));
 }
 
 TEST_CASE("wear-law names and parameters validate their input") {
@@ -178,9 +180,10 @@ TEST_CASE("table interpolation does not depend on the volumes asked for before")
   }
   // and the interpolation matches a direct solve to 1e-5 relative
   const BorContact direct = solve_bor_contact(rig, 225.0, 0.77 * kMm3);
-  CHECK(fresh.at(0.77 * kMm3).scar_depth == doctest::Approx(direct.scar_depth).epsilon(1e-5));
+  CHECK(fresh.at(0.77 * kMm3).scar_depth ==
+        doctest::Approx(direct.scar_depth).epsilon(1e-5).scale(0));
   CHECK(fresh.at(0.77 * kMm3).contact_width ==
-        doctest::Approx(direct.contact_width).epsilon(1e-5));
+        doctest::Approx(direct.contact_width).epsilon(1e-5).scale(0));
 }
 
 TEST_CASE("incubation law: closed form against a quadrature of its rate factor") {
@@ -201,11 +204,11 @@ TEST_CASE("incubation law: closed form against a quadrature of its rate factor")
     }
     const double quadrature = per * sum * n / (3.0 * m);
     CHECK(closed_form_volume(BorWearLaw::incubation, p, 225.0, s, n) ==
-          doctest::Approx(quadrature).epsilon(1e-9));
+          doctest::Approx(quadrature).epsilon(1e-9).scale(0));
   }
   CHECK(wear_rate_factor(BorWearLaw::incubation, p, 0.0, 0.0) == 0.0);
   CHECK(closed_form_volume(BorWearLaw::incubation, p, 225.0, s, 1e6) ==
-        doctest::Approx(per * (1e6 - 25000.0)).epsilon(1e-12));
+        doctest::Approx(per * (1e6 - 25000.0)).epsilon(1e-12).scale(0));
   CHECK(parse_wear_law("incubation", "test") == BorWearLaw::incubation);
   CHECK(wear_law_param_names(BorWearLaw::incubation) ==
         std::vector<std::string>{"incubation_cycles"});

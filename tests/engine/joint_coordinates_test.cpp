@@ -34,12 +34,12 @@ TEST_CASE("joint coordinates: flexion and tibial translation, closed form") {
   const auto X_WF = pose(rot(30 * kDeg, Eigen::Vector3d::UnitZ()), {0, 0.046, 0});
   const auto X_WT = pose(Eigen::Matrix3d::Identity(), {0.003, 0, -0.002});
   const JointCoordinates j = calc_joint_coordinates(X_WF, X_WT);
-  CHECK(j.flexion == doctest::Approx(30 * kDeg).epsilon(1e-12));
+  CHECK(j.flexion == doctest::Approx(30 * kDeg).epsilon(1e-12).scale(0));
   CHECK(std::abs(j.vv) < 1e-12);
   CHECK(std::abs(j.ie) < 1e-12);
-  CHECK(j.ap == doctest::Approx(0.003).epsilon(1e-12));
-  CHECK(j.ml == doctest::Approx(-0.002).epsilon(1e-12));
-  CHECK(j.is == doctest::Approx(-0.046).epsilon(1e-12));
+  CHECK(j.ap == doctest::Approx(0.003).epsilon(1e-12).scale(0));
+  CHECK(j.ml == doctest::Approx(-0.002).epsilon(1e-12).scale(0));
+  CHECK(j.is == doctest::Approx(-0.046).epsilon(1e-12).scale(0));
 }
 
 TEST_CASE("joint coordinates: a femoral carriage moving anterior moves the tibia posterior") {
@@ -48,7 +48,7 @@ TEST_CASE("joint coordinates: a femoral carriage moving anterior moves the tibia
   const auto X_WF = pose(rot(10 * kDeg, Eigen::Vector3d::UnitZ()), {0.004, 0.046, 0});
   const auto X_WT = pose(Eigen::Matrix3d::Identity(), {0, 0, 0});
   const JointCoordinates j = calc_joint_coordinates(X_WF, X_WT);
-  CHECK(j.ap == doctest::Approx(-0.004).epsilon(1e-12));
+  CHECK(j.ap == doctest::Approx(-0.004).epsilon(1e-12).scale(0));
   CHECK(std::abs(j.ml) < 1e-15);
 }
 
@@ -57,16 +57,16 @@ TEST_CASE("joint coordinates: rotation signs (frames.h) for either carriage") {
     const auto X_WF = pose(Eigen::Matrix3d::Identity(), {0, 0.046, 0});
     const JointCoordinates a =
         calc_joint_coordinates(X_WF, pose(rot(3 * kDeg, Eigen::Vector3d::UnitX()), {0, 0, 0}));
-    CHECK(a.vv == doctest::Approx(3 * kDeg).epsilon(1e-12));
+    CHECK(a.vv == doctest::Approx(3 * kDeg).epsilon(1e-12).scale(0));
     const JointCoordinates b =
         calc_joint_coordinates(X_WF, pose(rot(7 * kDeg, Eigen::Vector3d::UnitY()), {0, 0, 0}));
-    CHECK(b.ie == doctest::Approx(7 * kDeg).epsilon(1e-12));
+    CHECK(b.ie == doctest::Approx(7 * kDeg).epsilon(1e-12).scale(0));
     CHECK(std::abs(b.vv) < 1e-12);
   }
   SUBCASE("a femur tilted about +x is the tibia tilted the other way: VV < 0") {
     const auto X_WF = pose(rot(2 * kDeg, Eigen::Vector3d::UnitX()), {0, 0.046, 0});
     const JointCoordinates j = calc_joint_coordinates(X_WF, Eigen::Isometry3d::Identity());
-    CHECK(j.vv == doctest::Approx(-2 * kDeg).epsilon(1e-12));
+    CHECK(j.vv == doctest::Approx(-2 * kDeg).epsilon(1e-12).scale(0));
   }
 }
 
@@ -106,7 +106,7 @@ TEST_CASE("joint coordinates: a shift along the tibial axis e3 changes IS only")
       calc_joint_coordinates(X_WF, pose(R_T, p_T + 0.01 * R_T.col(1)));
   CHECK(std::abs(b.ap - a.ap) < 1e-14);
   CHECK(std::abs(b.ml - a.ml) < 1e-14);
-  CHECK(b.is - a.is == doctest::Approx(0.01).epsilon(1e-12));
-  CHECK(a.vv == doctest::Approx(5 * kDeg).epsilon(1e-12));
-  CHECK(a.ie == doctest::Approx(-8 * kDeg).epsilon(1e-12));
+  CHECK(b.is - a.is == doctest::Approx(0.01).epsilon(1e-12).scale(0));
+  CHECK(a.vv == doctest::Approx(5 * kDeg).epsilon(1e-12).scale(0));
+  CHECK(a.ie == doctest::Approx(-8 * kDeg).epsilon(1e-12).scale(0));
 }

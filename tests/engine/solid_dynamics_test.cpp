@@ -69,9 +69,13 @@ TEST_CASE("hex8 uniaxial tension: sigma = E eps and lateral contraction nu (quas
     REQUIRE(run(model, state, data, 4000, 0.7));
     const double eps = (state.position[mesh.node(2, 1, 1)].x() - L) / L;
     const double lateral = (state.position[mesh.node(1, 2, 1)].y() - L) / L;
-    // small strain (1.5e-3 at most): Green-Lagrange vs engineering strain differ by eps/2
-    CHECK(eps == doctest::Approx(sigma / E).epsilon(2e-3));
-    CHECK(-lateral / eps == doctest::Approx(nu).epsilon(2e-3));
+    // St Venant-Kirchhoff under a dead load: the nominal stress is P = F S = (1 + eps) E (eps +
+    // eps^2 / 2), so eps falls short of sigma / E by 1.5 eps (2.2e-3 at eps = 1.46e-3; the
+    // earlier estimate, eps / 2 from the Green-Lagrange strain alone, missed the stretch F);
+    // checked on that closed form to the stated 2e-3 (measured 1.4e-5)
+    CHECK(E * (1.0 + eps) * (eps + 0.5 * eps * eps) ==
+          doctest::Approx(sigma).epsilon(2e-3).scale(0));
+    CHECK(-lateral / eps == doctest::Approx(nu).epsilon(2e-3).scale(0));
     // quasi-static: the kinetic energy has died away against the strain energy
     CHECK(data.kinetic_energy < 1e-8 * data.total_strain_energy);
   }
@@ -121,7 +125,7 @@ TEST_CASE("hex8 pure bending: tip deflection M L^2 / (2 E I), hourglass energy a
   REQUIRE(run(model, state, data, steps, 0.7));
   const double tip = state.position[mesh.node(32, 2, 2)].y() - mesh.nodes[mesh.node(32, 2, 2)].y();
   const double exact = -M * Lx * Lx / (2.0 * E * I);
-  CHECK(tip == doctest::Approx(exact).epsilon(0.03));
+  CHECK(tip == doctest::Approx(exact).epsilon(0.03).scale(0));
   const double fraction = data.total_hourglass_energy / data.total_strain_energy;
   MESSAGE("pure bending: tip ", tip, " m vs ", exact, " m; hourglass energy fraction ", fraction);
   CHECK(fraction < 0.10);  // 1/n^2 = 6.25 % for n = 4 elements through the thickness

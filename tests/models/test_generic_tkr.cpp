@@ -117,9 +117,9 @@ TEST_CASE("generic femur and insert are watertight at three resolutions") {
     // the insert sits on y = 0 with the requested outline
     const auto box = kneesim::models::bounding_box(t);
     CHECK(box.min().y() == 0.0);
-    CHECK(box.max().y() == doctest::Approx(p.insert_eminence_height_m));
-    CHECK(box.sizes().x() == doctest::Approx(p.insert_ap_depth_m));
-    CHECK(box.sizes().z() == doctest::Approx(p.insert_ml_width_m));
+    CHECK(box.max().y() == doctest::Approx(p.insert_eminence_height_m).scale(0));
+    CHECK(box.sizes().x() == doctest::Approx(p.insert_ap_depth_m).scale(0));
+    CHECK(box.sizes().z() == doctest::Approx(p.insert_ml_width_m).scale(0));
   }
 }
 
@@ -145,8 +145,8 @@ TEST_CASE("insert dwell points and eminence") {
   const TriMesh t = kneesim::models::make_generic_insert(p, 1e-3);
   for (int side : {kneesim::frames::kMedial, kneesim::frames::kLateral}) {
     const Eigen::Vector3d d = kneesim::models::dwell_point(p, side);
-    CHECK(d.z() == doctest::Approx(kneesim::frames::condyle_z_sign(side) * 0.022));
-    CHECK(d.y() == doctest::Approx(p.insert_thickness_m));
+    CHECK(d.z() == doctest::Approx(kneesim::frames::condyle_z_sign(side) * 0.022).scale(0));
+    CHECK(d.y() == doctest::Approx(p.insert_thickness_m).scale(0));
     // the dwell point is a vertex and the lowest articular point of its half
     bool found = false;
     double lowest = 1.0;
@@ -156,15 +156,15 @@ TEST_CASE("insert dwell points and eminence") {
       if (on_top && v.z() * d.z() > 0.0) lowest = std::min(lowest, v.y());
     }
     CHECK(found);
-    CHECK(lowest == doctest::Approx(p.insert_thickness_m).epsilon(1e-12));
+    CHECK(lowest == doctest::Approx(p.insert_thickness_m).epsilon(1e-12).scale(0));
   }
   CHECK(kneesim::models::dwell_point(p, -1) == kneesim::models::dwell_point(p, 0));
   // the exact coronal and sagittal arcs through the dwell point
   const double rc = p.insert_coronal_radius_m, rs = p.insert_sagittal_radius_m;
   CHECK(kneesim::models::insert_surface_height(p, 0.0, 0.022 + 0.01) ==
-        doctest::Approx(p.insert_thickness_m + rc - std::sqrt(rc * rc - 1e-4)));
+        doctest::Approx(p.insert_thickness_m + rc - std::sqrt(rc * rc - 1e-4)).scale(0));
   CHECK(kneesim::models::insert_surface_height(p, 0.015, -0.022) ==
-        doctest::Approx(p.insert_thickness_m + rs - std::sqrt(rs * rs - 0.015 * 0.015)));
+        doctest::Approx(p.insert_thickness_m + rs - std::sqrt(rs * rs - 0.015 * 0.015)).scale(0));
   CHECK(kneesim::models::insert_surface_height(p, 0.0, 0.0) == p.insert_eminence_height_m);
 }
 
@@ -178,7 +178,7 @@ TEST_CASE("femur sagittal sections recover the distal and posterior radii") {
   auto distal = arc_points(pts, Eigen::Vector2d::Zero(), 0.034, -20 * kDeg, th_t - 2 * kDeg);
   REQUIRE(distal.size() > 20);
   Circle c = fit_circle(distal);
-  CHECK(c.radius == doctest::Approx(p.femur_distal_radius_m).epsilon(1e-9));
+  CHECK(c.radius == doctest::Approx(p.femur_distal_radius_m).epsilon(1e-9).scale(0));
   CHECK(c.centre.norm() < 1e-9);
   // posterior arc, 22 mm, tangent to the distal arc at the transition
   const Eigen::Vector2d cp = (p.femur_distal_radius_m - p.femur_posterior_radius_m) *
@@ -186,7 +186,7 @@ TEST_CASE("femur sagittal sections recover the distal and posterior radii") {
   auto posterior = arc_points(pts, cp, 0.018, th_t + 2 * kDeg, 115 * kDeg);
   REQUIRE(posterior.size() > 20);
   c = fit_circle(posterior);
-  CHECK(c.radius == doctest::Approx(p.femur_posterior_radius_m).epsilon(1e-9));
+  CHECK(c.radius == doctest::Approx(p.femur_posterior_radius_m).epsilon(1e-9).scale(0));
   CHECK((c.centre - cp).norm() < 1e-9);
   // an off-centre section (u = 5 mm, between vertex lines) is the torus's smaller circle
   pts = section(f, -zc + 0.0053);
@@ -215,7 +215,7 @@ TEST_CASE("femur lowest point over the flexion range") {
     CHECK(lowest < expected + 2e-5);
   }
   // flexed 90 deg the posterior arc centre (-8, -13.86) mm turns to (13.86, -8) mm
-  CHECK(kneesim::models::femur_lowest_point_y(p, 90 * kDeg) == doctest::Approx(-0.030));
+  CHECK(kneesim::models::femur_lowest_point_y(p, 90 * kDeg) == doctest::Approx(-0.030).scale(0));
 }
 
 TEST_CASE("default implant at 1 mm edges: element counts") {

@@ -22,10 +22,12 @@ double e_star() { return 1.0 / (2.0 * compliance(210e9, 0.3)); }
 
 TEST_CASE("Love rectangle: centre deflection of a square is 8 a asinh(1) / pi") {
   const double a = 1e-6;
-  CHECK(love_rectangle(0.0, 0.0, a, a) == doctest::Approx(8.0 * a * std::asinh(1.0) / kPi).epsilon(1e-14));
+  CHECK(love_rectangle(0.0, 0.0, a, a) ==
+        doctest::Approx(8.0 * a * std::asinh(1.0) / kPi).epsilon(1e-14).scale(0));
   // far away it tends to the point load: area / (pi r)
   const double r = 1000 * a;
-  CHECK(love_rectangle(r, 0.0, a, a) == doctest::Approx(4 * a * a / (kPi * r)).epsilon(1e-6));
+  CHECK(love_rectangle(r, 0.0, a, a) ==
+        doctest::Approx(4 * a * a / (kPi * r)).epsilon(1e-6).scale(0));
 }
 
 TEST_CASE("DC-FFT deflection of a uniform square patch equals Love's closed form") {
@@ -59,9 +61,9 @@ TEST_CASE("Hertz sphere on a half-space within 2 % at 128 x 128 over +-1.6 a") {
   const double p_max = *std::max_element(r.pressure.begin(), r.pressure.end());
   const double a_num = std::sqrt(r.contact_fraction * g.size() * g.cell_area() / kPi);
   CHECK(p_max == doctest::Approx(p0).epsilon(0.02));
-  CHECK(a_num == doctest::Approx(a).epsilon(0.02));
+  CHECK(a_num == doctest::Approx(a).epsilon(0.02).scale(0));
   CHECK(r.load == doctest::Approx(load).epsilon(1e-6));
-  CHECK(r.approach == doctest::Approx(a * a / radius).epsilon(0.02));
+  CHECK(r.approach == doctest::Approx(a * a / radius).epsilon(0.02).scale(0));
 }
 
 TEST_CASE("Hertz cylinder (periodic along its axis) within 2 % at 256 x 8 over +-2 b") {
@@ -81,7 +83,7 @@ TEST_CASE("Hertz cylinder (periodic along its axis) within 2 % at 256 x 8 over +
   const double p_max = *std::max_element(r.pressure.begin(), r.pressure.end());
   const double b_num = 0.5 * r.contact_fraction * nx * g.dx;
   CHECK(p_max == doctest::Approx(p0).epsilon(0.02));
-  CHECK(b_num == doctest::Approx(b).epsilon(0.02));
+  CHECK(b_num == doctest::Approx(b).epsilon(0.02).scale(0));
   // the pressure is uniform along the axis (periodic images act like an infinite cylinder)
   for (int i = 0; i < nx; ++i)
     for (int j = 1; j < ny; ++j)
@@ -102,12 +104,12 @@ TEST_CASE("layered frequency response: limits of film thickness") {
   const double g1 = e1 / (2 * 1.3), g2 = e2 / (2 * 1.3);
   for (double alpha : {1e4, 1e6, 1e7}) {
     CHECK(layered_compliance_frf(alpha, h, e2, nu, e2, nu) ==
-          doctest::Approx((1 - nu) / (g2 * alpha)).epsilon(1e-9));
+          doctest::Approx((1 - nu) / (g2 * alpha)).epsilon(1e-9).scale(0));
   }
   CHECK(layered_compliance_frf(30.0 / h, h, e1, nu, e2, nu) ==
-        doctest::Approx((1 - nu) / (g1 * 30.0 / h)).epsilon(1e-6));
+        doctest::Approx((1 - nu) / (g1 * 30.0 / h)).epsilon(1e-6).scale(0));
   CHECK(layered_compliance_frf(1e-4 / h, h, e1, nu, e2, nu) ==
-        doctest::Approx((1 - nu) / (g2 * 1e-4 / h)).epsilon(1e-3));
+        doctest::Approx((1 - nu) / (g2 * 1e-4 / h)).epsilon(1e-3).scale(0));
 }
 
 TEST_CASE("bad input: load above hardness x area, bad grids") {
@@ -144,7 +146,7 @@ TEST_CASE("layered frequency response equals the closed form of a bonded layer")
       const double closed = (1 - m.nuf) / (g1 * (ah / h)) * (1 + 4 * mm * ah * e2 - l * mm * e4) /
                             (1 - (l + mm + 4 * mm * ah * ah) * e2 + l * mm * e4);
       CHECK(layered_compliance_frf(ah / h, h, m.ef, m.nuf, m.es, m.nus) ==
-            doctest::Approx(closed).epsilon(1e-9));
+            doctest::Approx(closed).epsilon(1e-9).scale(0));
     }
   }
 }

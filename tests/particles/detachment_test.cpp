@@ -34,14 +34,14 @@ TEST_CASE("labelling: surface-reaching regions only, 6-connectivity, periodic se
   const Detachment d = find_particles(vm, g, nz, 1e-7, 1.0);
   REQUIRE(d.particles.size() == 4);  // A, D1, D2, C (B is buried)
   const Particle& a = d.particles[0];
-  CHECK(a.volume == doctest::Approx(12 * 1e-21));
-  CHECK(a.eq_radius == doctest::Approx(std::cbrt(3 * 12e-21 / (4 * M_PI))));
-  CHECK(a.length == doctest::Approx(2e-7));
-  CHECK(a.width == doctest::Approx(2e-7));
-  CHECK(a.thickness == doctest::Approx(3e-7));
+  CHECK(a.volume == doctest::Approx(12 * 1e-21).scale(0));
+  CHECK(a.eq_radius == doctest::Approx(std::cbrt(3 * 12e-21 / (4 * M_PI))).scale(0));
+  CHECK(a.length == doctest::Approx(2e-7).scale(0));
+  CHECK(a.width == doctest::Approx(2e-7).scale(0));
+  CHECK(a.thickness == doctest::Approx(3e-7).scale(0));
   const Particle& c = d.particles[3];
-  CHECK(c.width == doctest::Approx(2e-7));  // followed across the seam
-  CHECK(d.removed_depth[1 * g.ny + 1] == doctest::Approx(3e-7));
+  CHECK(c.width == doctest::Approx(2e-7).scale(0));  // followed across the seam
+  CHECK(d.removed_depth[1 * g.ny + 1] == doctest::Approx(3e-7).scale(0));
   CHECK(d.removed_depth[3 * g.ny + 3] == 0.0);
   // without periodicity the seam splits C in two
   g.periodic_y = false;
@@ -59,8 +59,8 @@ TEST_CASE("height map import and its errors") {
   const HeightMap m = read_height_map(good);
   CHECK(m.grid.nx == 2);
   CHECK(m.grid.ny == 2);
-  CHECK(m.grid.dx == doctest::Approx(1e-7));
-  CHECK(m.height[3] == doctest::Approx(1.5e-9));
+  CHECK(m.grid.dx == doctest::Approx(1e-7).scale(0));
+  CHECK(m.height[3] == doctest::Approx(1.5e-9).scale(0));
   const auto ragged = dir / "ragged.csv";
   {
     std::ofstream f(ragged);

@@ -55,10 +55,11 @@ TEST_CASE("linear wear on the pristine insert agrees with the wear loop (archard
     REQUIRE(w.status == engine::StepStatus::kOk);
     const double n = w.records.back().cycles;
     CAPTURE(running_in);
-    CHECK(tables.at("iso")->volume(p, n) == doctest::Approx(w.records.back().volume).epsilon(0.03));
+    CHECK(tables.at("iso")->volume(p, n) ==
+          doctest::Approx(w.records.back().volume).epsilon(0.03).scale(0));
     if (!running_in) {
       CHECK(tables.at("iso")->max_depth(p, n) ==
-            doctest::Approx(w.records.back().max_depth).epsilon(0.10));
+            doctest::Approx(w.records.back().max_depth).epsilon(0.10).scale(0));
     }
   }
 }

@@ -96,16 +96,22 @@ TEST_CASE("kneesim run drives the rig with a measured load table") {
   CHECK(rows.back()[time] == doctest::Approx(2.4).epsilon(0.02));
 
   // a VV torque = arm x axial force moves the load line medially by the arm: statics puts
-  // the medial share up by about arm / condyle spacing (5 / 44 = 0.11) on the built-in implant
+  // the medial share up by about arm / condyle spacing (2 / 44 = 0.045) on the built-in
+  // implant, to 30 %. The arm is 2 mm (it was 5 mm, checked with doctest's default scale of 1,
+  // i.e. 0.3 absolute, which accepted anything): the stanmore tibial VV axis already sits 5 mm
+  // medial (base share 0.62), and at 5 + 5 mm the lateral condyle carries 10 % of the load at
+  // 46 % of the cycle and the free tibial VV tilts 6 deg, beyond linear statics (measured
+  // +0.165 against 5 / 44 = 0.114; -5 mm gives -0.116). Mid-stance contacts are also 31 mm
+  // apart, not 44 (statics at the base run's centres of pressure: 0.052 at 2 mm, measured 0.050)
   const auto share = [](const fs::path& dir) {
     return nlohmann::json::parse(slurp(dir / "summary.json"))["medial_fraction_stance"].get<double>();
   };
   const Result shifted = run_kneesim({"run", config.string(), "--out", (tmp.path / "arm").string(),
-                                      "--set", "gait.vv_torque_axial_arm_mm=5"},
+                                      "--set", "gait.vv_torque_axial_arm_mm=2"},
                                      tmp.path, "arm");
   REQUIRE(shifted.exit_code == 0);
   const double d_share = share(tmp.path / "arm") - share(tmp.path / "base");
-  CHECK(d_share == doctest::Approx(5.0 / 44.0).epsilon(0.3));
+  CHECK(d_share == doctest::Approx(2.0 / 44.0).epsilon(0.3).scale(0));
   // a varus femoral component (+) loads the medial condyle as well
   const Result varus = run_kneesim({"run", config.string(), "--out", (tmp.path / "vv").string(),
                                     "--set", "rig.femur_vv_deg=2"},

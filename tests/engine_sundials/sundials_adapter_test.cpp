@@ -91,7 +91,7 @@ TEST_CASE("CVODE reset restarts from a new state and max_step is honoured") {
   Eigen::VectorXd y;
   ode.reset(0.0, Eigen::VectorXd::Constant(1, 1.0));
   ode.advance_to(1.0, y);
-  CHECK(y[0] == doctest::Approx(std::exp(-1.0)).epsilon(1e-6));
+  CHECK(y[0] == doctest::Approx(std::exp(-1.0)).epsilon(1e-6).scale(0));
   CHECK(ode.num_steps() >= 100);  // 1 s at most 0.01 s per step
   ode.reset(2.0, Eigen::VectorXd::Constant(1, 3.0));
   ode.advance_to(2.5, y);

@@ -117,6 +117,9 @@ TEST_CASE("kneesim run drives the rig with a measured load table") {
                                     "--set", "rig.femur_vv_deg=2"},
                                    tmp.path, "vv");
   REQUIRE(varus.exit_code == 0);
+  const double d_varus = share(tmp.path / "vv") - share(tmp.path / "base");
+  MESSAGE("medial share shift: arm 2 mm " << d_share << ", femur varus 2 deg " << d_varus);
+  CHECK(d_varus > 0.0);
 }
 
 TEST_CASE("kneesim run refuses a measured window outside the data") {

@@ -148,4 +148,11 @@ TEST_CASE("deformable insert: bad config values are refused with one sentence") 
   CHECK(poisson.find("material.poisson") != std::string::npos);
   const std::string cvode = message({"solver.integrator=cvode"});
   CHECK(cvode.find("central_difference") != std::string::npos);
+  // a step above the stable limit cannot be asked for: the step is dt_safety times the limit
+  // (the solid's reached by mass scaling), and a safety factor above 1 is refused
+  const std::string unstable = message({"solver.dt_safety=1.5"});
+  INFO(unstable);
+  CHECK(unstable.find("solver.dt_safety") != std::string::npos);
+  CHECK(unstable.find("1.5") != std::string::npos);
+  CHECK(unstable.find("1]") != std::string::npos);
 }

@@ -11,6 +11,7 @@
 
 #include "engine/contact_law.h"
 #include "engine/kinematics.h"
+#include "engine/sdf_pairs.h"
 
 namespace kneesim::engine {
 
@@ -134,6 +135,7 @@ struct ElementLoop {
   // search: the fine and far fields, the maps into their grids, the femoral origin in T
   FieldSampler fine, far;
   GridMap to_fine, to_far;
+  PairGridMap pairs_to_fine, pairs_to_far;  // the same maps for two elements at once
   double band = 0.0, far_spacing = 0.0;
   bool has_far = false;  // a model may come without the far field (hand-built test models)
   Eigen::Vector3d o_T;
@@ -161,6 +163,8 @@ struct ElementLoop {
         far(model.femur_far_sdf.sampler()),
         to_fine(model.femur_sdf, data.X_WF.inverse() * data.X_WT),
         to_far(model.femur_far_sdf, data.X_WF.inverse() * data.X_WT),
+        pairs_to_fine(to_fine.A, to_fine.b),
+        pairs_to_far(to_far.A, to_far.b),
         band(model.femur_sdf.band),
         far_spacing(model.femur_far_sdf.spacing),
         has_far(!model.femur_far_sdf.empty()),
@@ -187,18 +191,45 @@ struct ElementLoop {
         slip_velocity_T(data.slip_velocity_T.data()),
         element_force_W(data.element_force_W.data()) {}
 
+  // the fine field's distance at element e's centroid [m]
+  [[gnu::always_inline]] double find_distance(int e) const {
+    return fine.sample_grid(to_fine(centroid_T[e]));
+  }
+  // find_distance of elements e and f, into out[0] and out[1]: the same bits (engine/sdf_pairs.h)
+  [[gnu::always_inline]] void find_distances(int e, int f, double out[2]) const {
+    sample_pair(fine, pairs_to_fine, centroid_T[e], centroid_T[f], out);
+  }
+  // whether an element at fine distance phi lies beyond the fine band, where the coarse field
+  // tells the distance
+  [[gnu::always_inline]] bool is_far(double phi) const { return (phi >= band) & has_far; }
+  // such an element's gap: the coarse field's distance less its interpolation error, if larger
+  [[gnu::always_inline]] double find_far_gap(int e, double phi) const {
+    return std::max(phi, far.sample_grid(to_far(centroid_T[e])) - far_spacing);
+  }
+  // find_far_gap of elements e and f at fine distances phi_e and phi_f, into gap_e and gap_f
+  [[gnu::always_inline]] void find_far_gaps(int e, int f, double phi_e, double phi_f,
+                                            double& gap_e, double& gap_f) const {
+    double s[2];
+    sample_pair(far, pairs_to_far, centroid_T[e], centroid_T[f], s);
+    gap_e = std::max(phi_e, s[0] - far_spacing);
+    gap_f = std::max(phi_f, s[1] - far_spacing);
+  }
+
   // the element's distance, its next evaluation, and while in contact its pressure, slip and
   // force; writes only element e's slots. True when in contact, with the terms the reduction
   // needs in `terms`.
   [[gnu::always_inline]] bool evaluate(int e, ContactTerms& terms) const {
-    const Eigen::Vector3d c_T = centroid_T[e];
-    const double phi = fine.sample_grid(to_fine(c_T));
+    const double phi = find_distance(e);
+    return finish(e, phi, is_far(phi) ? find_far_gap(e, phi) : phi, terms);
+  }
+
+  // evaluate() from the element's fine distance phi and its gap (phi, or find_far_gap beyond
+  // the band)
+  [[gnu::always_inline]] bool finish(int e, double phi, double gap, ContactTerms& terms) const {
+    const Eigen::Vector3d& c_T = centroid_T[e];
     const double d = -phi;
     if (d <= 0.0) {
-      // out of contact: sleep until the motion could have closed the gap; beyond the fine
-      // band the coarse field (less its interpolation error) tells the distance
-      double gap = phi;
-      if (phi >= band && has_far) gap = std::max(phi, far.sample_grid(to_far(c_T)) - far_spacing);
+      // out of contact: sleep until the motion could have closed the gap
       const double r2 = (c_T - o_T).squaredNorm();
       if (femur_radius > 0.0 && r2 > radius2) {
         // a point farther from the femoral origin than femur_radius moves proportionally more
@@ -405,14 +436,41 @@ void calc_contact(const Model& model, const State& state, Data& data) {
       }
     }
   } else {
-    // the same in one pass: each element's terms go to the reduction as it is evaluated
+    // the same in batches of three passes: the fine distances of the batch, two elements at a
+    // time (loads of independent elements overlap, no contact test between them to
+    // mispredict), the coarse field's distances of those beyond the band (listed without a
+    // branch, sampled in pairs too),
+    // then each element's sleep or contact in due order, its terms going to the reduction as
+    // it is evaluated. The arithmetic per element is evaluate()'s, so are the bits.
     const ElementLoop local = loop;
     ContactTerms terms;
-    for (int i = 0; i < n; ++i) {
-      const int e = due[i];
-      if (!local.evaluate(e, terms)) continue;
-      data.in_contact.push_back(e);
-      reduction.add(model.insert, e, terms);
+    constexpr int kBatch = 64;
+    double phi[kBatch], gap[kBatch];
+    int far[kBatch];
+    for (int base = 0; base < n; base += kBatch) {
+      const int m = std::min(kBatch, n - base);
+      const int* batch = due + base;
+      int i = 0;
+      for (; i + 1 < m; i += 2) local.find_distances(batch[i], batch[i + 1], phi + i);
+      if (i < m) phi[i] = local.find_distance(batch[i]);
+      int n_far = 0;
+      for (i = 0; i < m; ++i) {
+        gap[i] = phi[i];
+        far[n_far] = i;
+        n_far += local.is_far(phi[i]);
+      }
+      int k = 0;
+      for (; k + 1 < n_far; k += 2) {
+        const int a = far[k], b = far[k + 1];
+        local.find_far_gaps(batch[a], batch[b], phi[a], phi[b], gap[a], gap[b]);
+      }
+      if (k < n_far) gap[far[k]] = local.find_far_gap(batch[far[k]], phi[far[k]]);
+      for (int i = 0; i < m; ++i) {
+        const int e = batch[i];
+        if (!local.finish(e, phi[i], gap[i], terms)) continue;
+        data.in_contact.push_back(e);
+        reduction.add(model.insert, e, terms);
+      }
     }
   }
   reduction.finish(model, data);

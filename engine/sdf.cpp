@@ -28,6 +28,7 @@ FieldSampler SignedDistanceField::sampler() const {
   }
   f.brick_of = storage ? storage->brick_of.data() : nullptr;
   f.values = storage ? storage->values.data() : nullptr;
+  f.clamp_bricks = storage ? storage->clamp_bricks.data() : nullptr;
   return f;
 }
 
@@ -41,6 +42,8 @@ void make_brick_axes(const SignedDistanceField& field, SignedDistanceField::Stor
       storage.axes[a][i] = {b * brick_stride[a], (i - kBrickCells * b) * node_stride[a]};
     }
   }
+  storage.clamp_bricks.assign(kBrickSize, static_cast<float>(field.band));
+  storage.clamp_bricks.resize(2 * kBrickSize, static_cast<float>(-field.band));
 }
 
 double SignedDistanceField::sample(const Eigen::Vector3d& p_F, Eigen::Vector3d* gradient) const {
@@ -82,6 +85,7 @@ int SignedDistanceField::stored_bricks() const {
 size_t SignedDistanceField::bytes() const {
   return storage ? storage->values.size() * sizeof(float) +
                        storage->brick_of.size() * sizeof(int32_t) +
+                       storage->clamp_bricks.size() * sizeof(float) +
                        (storage->axes[0].size() + storage->axes[1].size() +
                         storage->axes[2].size()) * sizeof(BrickAxis)
                  : 0;

@@ -14,11 +14,13 @@
 // Points are sampled at random (fixed seed) in a shell |p| - R in [-2, 2] mm and in the box.
 #include <doctest/doctest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 
 #include "engine/fcl_adapter.h"
 #include "engine/sdf.h"
+#include "engine/sdf_pairs.h"
 #include "engine_fixtures.h"
 
 using namespace kneesim;
@@ -181,4 +183,41 @@ TEST_CASE("bricked field: a sample is the trilinear interpolation of its cell's 
                             << stored);
   CHECK(f.sdf.stored_bricks() < all);
   CHECK(stored > 100);
+}
+
+TEST_CASE("pairs of samples (engine/sdf_pairs.h) equal the scalar map and sample bit for bit") {
+  // reference: the scalar path of the contact kernel, A p + b (Eigen) then sample_grid, for
+  // each point of a pair. Points from a box larger than the grid (some pairs have one or both
+  // points outside: the fallback) under a rotated, scaled map like the kernel's X_FT / spacing;
+  // the points inside cover stored bricks, clamp bricks (+band and -band) and brick faces.
+  const auto& f = fixture();
+  const engine::FieldSampler s = f.sdf.sampler();
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Vector3d t(0.4e-3, -0.7e-3, 0.2e-3);
+  const Eigen::Matrix3d A = R / f.sdf.spacing;
+  const Eigen::Vector3d b = (t - f.sdf.origin) / f.sdf.spacing;
+  const engine::PairGridMap map(A, b);
+  std::mt19937 rng(11);
+  const double half = -f.sdf.origin.x() + 2.0 * kSpacing;  // beyond the grid by two cells
+  std::uniform_real_distribution<double> u(-half, half);
+  int inside = 0, clamp = 0, fallback = 0, mismatches = 0;
+  for (int n = 0; n < 50000; ++n) {
+    const Eigen::Vector3d p(u(rng), u(rng), u(rng)), q(u(rng), u(rng), u(rng));
+    double out[2];
+    engine::sample_pair(s, map, p, q, out);
+    const double ref_p = s.sample_grid(A * p + b), ref_q = s.sample_grid(A * q + b);
+    mismatches += out[0] != ref_p || out[1] != ref_q;
+    for (const double v : {ref_p, ref_q}) {
+      inside += std::abs(v) < kBand;
+      clamp += std::abs(v) == static_cast<float>(kBand);
+    }
+    fallback += ref_p == kBand || ref_q == kBand;  // outside the grid (or on its clamp value)
+  }
+  MESSAGE("samples in the band " << inside << ", at a clamp value " << clamp
+                                 << ", pairs with a point outside the grid " << fallback);
+  CHECK(mismatches == 0);
+  CHECK(inside > 1000);
+  CHECK(clamp > 1000);
+  CHECK(fallback > 1000);
 }

@@ -57,6 +57,19 @@ struct FieldSampler {
   const float* values;
   const float* clamp_bricks;      // Storage::clamp_bricks
   const BrickAxis* axis[3];
+  // the first value of brick_of's entry `brick`: a stored brick's values, or for a brick not
+  // stored the clamp brick of its value (kBrickOutside = -1: the first, kBrickInside = -2: the
+  // second), whose 8 equal corners interpolate to exactly that value (c + t (c - c) = c).
+  // Selected with a mask, not a conditional, which the compiler makes a branch that about one
+  // sample in ten takes in no predictable order; no out-of-range pointer is formed.
+  [[gnu::always_inline]] const float* brick_values(int32_t brick) const {
+    static_assert(kBrickOutside == -1 && kBrickInside == -2, "clamp brick order");
+    const uintptr_t stored = -static_cast<uintptr_t>(brick >= 0);  // all ones when stored
+    const uintptr_t base = (reinterpret_cast<uintptr_t>(values) & stored) |
+                           (reinterpret_cast<uintptr_t>(clamp_bricks) & ~stored);
+    const long index = brick ^ (brick >> 31);  // brick when stored, -1 - brick when not
+    return reinterpret_cast<const float*>(base) + index * kBrickSize;
+  }
   // the field at grid coordinates g = (p_F - origin) / spacing [nodes]; +band outside the
   // grid [m]
   double sample_grid(const Eigen::Vector3d& g) const;
@@ -127,15 +140,8 @@ void make_brick_axes(const SignedDistanceField& field, SignedDistanceField::Stor
 #endif
   const BrickAxis ax = axis[0][i], ay = axis[1][j], az = axis[2][k];
   const int32_t brick = brick_of[ax.brick + ay.brick + az.brick];
-  // a brick not stored reads the clamp brick of its value (kBrickOutside = -1: the first,
-  // kBrickInside = -2: the second): its 8 equal corners interpolate to exactly that value
-  // (c + t (c - c) = c), and the branch that returned it directly, taken by about one sample in
-  // ten in no predictable order, is gone
-  static_assert(kBrickOutside == -1 && kBrickInside == -2, "clamp brick order");
-  const float* base = brick >= 0 ? values + static_cast<long>(brick) * kBrickSize
-                                 : clamp_bricks + static_cast<long>(-1 - brick) * kBrickSize;
   constexpr long sx = 1, sy = kBrickNodes, sz = kBrickNodes * kBrickNodes;
-  const float* phi = base + (ax.node + ay.node + az.node);
+  const float* phi = brick_values(brick) + (ax.node + ay.node + az.node);
 #ifdef __SSE2__
   static_assert(sx == 1, "x-neighbours adjacent: one 64-bit load holds a cell edge along x");
   const auto edge = [](const float* p) {  // (p[0], p[1]) as doubles

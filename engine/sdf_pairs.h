@@ -84,14 +84,7 @@ struct PairGridMap {
   const auto corner = [&f](int i, int j, int k) {  // as sample_grid: the cell's first node
     const BrickAxis ax = f.axis[0][i], ay = f.axis[1][j], az = f.axis[2][k];
     const int32_t brick = f.brick_of[ax.brick + ay.brick + az.brick];
-    // the stored brick or the clamp brick, selected with a mask: the compiler turns the
-    // conditional of sample_grid into a branch, which about one sample in ten takes in no
-    // predictable order
-    const uintptr_t stored = reinterpret_cast<uintptr_t>(f.values + static_cast<long>(brick) * kBrickSize);
-    const uintptr_t clamp = reinterpret_cast<uintptr_t>(f.clamp_bricks + static_cast<long>(-1 - brick) * kBrickSize);
-    const uintptr_t is_stored = -static_cast<uintptr_t>(brick >= 0);
-    const float* base = reinterpret_cast<const float*>((stored & is_stored) | (clamp & ~is_stored));
-    return base + (ax.node + ay.node + az.node);
+    return f.brick_values(brick) + (ax.node + ay.node + az.node);
   };
   const float* c0 = corner(i0, j0, k0);
   const float* c1 = corner(i1, j1, k1);

@@ -10,6 +10,7 @@
 #include <thread>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 
 #include "analysis/run/run_outputs.h"
 #include "analysis/run/solid_outputs.h"
@@ -276,6 +277,21 @@ wear::WearOptions make_wear_options(const WearJob& j, const models::BuiltModel& 
   return o;
 }
 
+namespace {
+// the summary.json of a finished run in `dir` whose run_identity is `identity_hex`; none for
+// another run's, a failed or an unreadable one (parsed without exceptions: discarded)
+std::optional<nlohmann::json> read_finished_summary(const std::filesystem::path& dir,
+                                                    const char* identity_hex) {
+  if (!std::filesystem::exists(dir / "summary.json")) return std::nullopt;
+  nlohmann::json s = nlohmann::json::parse(io::read_file(dir / "summary.json"), nullptr, false);
+  if (!s.is_object() || s.value("status", "") != "complete" ||
+      s.value("run_identity", "") != identity_hex) {
+    return std::nullopt;
+  }
+  return s;
+}
+}  // namespace
+
 nlohmann::json run_wear_job(const WearJob& j) {
   namespace fs = std::filesystem;
   check_wear_job(j);
@@ -285,20 +301,14 @@ nlohmann::json run_wear_job(const WearJob& j) {
   char identity_hex[17];
   std::snprintf(identity_hex, sizeof identity_hex, "%016llx",
                 static_cast<unsigned long long>(identity));
-  if (resume && !fs::exists(j.out / "wear.checkpoint") && fs::exists(j.out / "summary.json")) {
-    // finished before the interruption (the checkpoint goes when a run completes): the same
-    // run's summary is its result, another run's is not (it is started afresh below)
-    // (an unreadable summary is not a result: parse without exceptions, discarded -> afresh)
-    const nlohmann::json done =
-        nlohmann::json::parse(io::read_file(j.out / "summary.json"), nullptr, false);
-    if (done.is_object() && done.value("status", "") == "complete" && done.value("run_identity", "") == identity_hex) {
+  if (resume && !fs::exists(j.out / "wear.checkpoint")) {
+    // the checkpoint goes when a run completes: this run may have finished before the
+    // interruption, or been killed before its first update (then it starts afresh)
+    if (std::optional<nlohmann::json> done = read_finished_summary(j.out, identity_hex)) {
       if (!j.quiet) std::fprintf(stderr, "%s is complete: nothing to resume\n",
                                  j.out.string().c_str());
-      return done;
+      return *done;
     }
-  }
-  if (resume && !fs::exists(j.out / "wear.checkpoint")) {
-    // killed before the first update finished: nothing to resume, start afresh
     if (!j.quiet) std::fprintf(stderr, "no checkpoint in %s yet: starting from cycle 0\n",
                                j.out.string().c_str());
     resume = false;

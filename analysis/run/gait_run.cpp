@@ -198,7 +198,7 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
     plot_args.push_back("--measured");
     plot_args.push_back((out / "measured_kinematics.csv").string());
   }
-  io::run_plot("kinematics.py", plot_args);
+  if (job.plots) io::run_plot("kinematics.py", plot_args);
   io::write_json(out / "summary.json", summary);  // last: its presence marks a complete run
   report.summary = std::move(summary);
   return report;

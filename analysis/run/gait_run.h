@@ -25,6 +25,7 @@ struct GaitRunJob {
   models::Config config;        // cycles, map_pcts and measured_kinematics are read from it
   std::filesystem::path out;    // output folder
   bool quiet = false;           // no progress bar
+  bool plots = true;            // out/kinematics.png
   // called once the Model is built, before any step (e.g. to describe it on the terminal)
   std::function<void(const models::BuiltModel&)> on_built;
 };

@@ -107,6 +107,25 @@ TEST_CASE("the first row of kinematics.csv is the 0 % row") {
   CHECK(pct < 0.1);
 }
 
+TEST_CASE("--no-plots skips the plot and nothing else") {
+  // the same one-cycle run twice: the plot is the only difference (the timing measure of
+  // docs/performance.md takes the plot out of `run --cycles 11` minus `--cycles 1`)
+  TempDir tmp;
+  const fs::path with = tmp.path / "with", without = tmp.path / "without";
+  for (const auto& [out, flag] : {std::pair{with, ""}, std::pair{without, "--no-plots"}}) {
+    std::vector<std::string> args = {"run", "--out", out.string(), "--quiet", "--cycles", "1",
+                                     "--set", "implant.edge_length_mm=3"};
+    if (*flag != 0) args.emplace_back(flag);
+    const Result r = run_kneesim(args, tmp.path);
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exit_code == 0);
+  }
+  CHECK(fs::exists(with / "kinematics.png"));
+  CHECK_FALSE(fs::exists(without / "kinematics.png"));
+  CHECK(fs::exists(without / "summary.json"));
+  CHECK(slurp(with / "kinematics.csv") == slurp(without / "kinematics.csv"));
+}
+
 TEST_CASE("kneesim run rejects bad input with one line and no summary") {
   TempDir tmp;
   fs::path bad_config = tmp.path / "negative_modulus.toml";

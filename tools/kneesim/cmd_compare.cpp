@@ -28,6 +28,7 @@ struct CompareArgs {
   int jobs = 0;
   bool quiet = false;
   bool resume = false;
+  bool no_plots = false;
 };
 
 void run(const CompareArgs& a) {
@@ -46,6 +47,7 @@ void run(const CompareArgs& a) {
     job.out = fs::path(a.out) / m;
     job.quiet = true;
     job.depth_maps = false;
+    job.plots = !a.no_plots;
     job.resume = a.resume;
     // what defines this material's run: the config's text, the overrides, the material and
     // the schedule (a checkpoint or finished run of anything else is not resumed)
@@ -143,7 +145,7 @@ void run(const CompareArgs& a) {
   io::write_file_atomic(fs::path(a.out) / "comparison.md", head.str() + md);
   std::vector<std::string> args = {a.out};
   for (const auto& m : a.materials) args.push_back(m);
-  io::run_plot("compare.py", args);
+  if (!a.no_plots) io::run_plot("compare.py", args);
   io::write_json(fs::path(a.out) / "comparison.json", all);
   if (!a.quiet) std::printf("%s%sresults in %s\n", head.str().c_str(), md.c_str(), a.out.c_str());
 }
@@ -173,6 +175,8 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--set", args->sets, "override a config key (repeatable)");
   cmd->add_option("--jobs", args->jobs, "materials simulated at once (default: all cores)")
       ->check(finite_range(1, 1024));
+  cmd->add_flag("--no-plots", args->no_plots,
+                "skip the PNG plots (the CSV, JSON and Markdown results are the same)");
   cmd->add_flag("--quiet", args->quiet, "no per-material lines or table");
   cmd->add_flag("--resume", args->resume,
                 "continue a killed comparison: each material from its DIR/<material>/"

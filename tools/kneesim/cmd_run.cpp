@@ -17,6 +17,7 @@ struct RunArgs {
   std::vector<std::string> sets;
   std::string measured;
   bool quiet = false;
+  bool no_plots = false;
 };
 
 void run(const RunArgs& a) {
@@ -27,6 +28,7 @@ void run(const RunArgs& a) {
   if (!a.measured.empty()) job.config.measured_kinematics = fs::absolute(a.measured).string();
   job.out = a.out;
   job.quiet = a.quiet;
+  job.plots = !a.no_plots;
   const int cycles = job.config.cycles;
   if (!a.quiet) {
     job.on_built = [cycles](const models::BuiltModel& built) {
@@ -66,7 +68,7 @@ void add_run_command(CLI::App& app) {
       "Simulate gait cycles of the force-controlled rig (default: built-in generic TKR, "
       "stanmore rig, ISO 14243-1-shaped gait, UHMWPE insert). Writes DIR/kinematics.csv (one "
       "row per 1 % of the last cycle), DIR/summary.json, DIR/pressure_<pct>pct.vtp (ParaView) "
-      "and DIR/kinematics.png. With --set insert=deformable the insert is a hex8 solid "
+      "and DIR/kinematics.png (unless --no-plots). With --set insert=deformable the insert is a hex8 solid "
       "(docs/deformable.md): the pressure maps carry node pressures and element stresses, "
       "DIR/insert_stress.vtu the von Mises maximum over the cycle and the plastic strain per "
       "element, summary.json the surface/subsurface maxima and the kinetic/internal energy "
@@ -82,6 +84,8 @@ void add_run_command(CLI::App& app) {
                   "(repeatable; value in TOML syntax)");
   cmd->add_option("--measured", args->measured,
                   "measured kinematics (CSV gait_pct,ap_mm,ie_deg or .sto) to overlay in the plot");
+  cmd->add_flag("--no-plots", args->no_plots,
+                "skip DIR/kinematics.png (the CSV, JSON and VTK results are the same)");
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
   cmd->callback([args] { run(*args); });
 }

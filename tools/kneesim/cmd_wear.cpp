@@ -27,6 +27,7 @@ struct WearArgs {
   bool allow_any_wear_factor = false;
   bool quiet = false;
   bool no_depth_maps = false;
+  bool no_plots = false;
   std::vector<long> convergence;  // update intervals of a convergence study
   std::string wear_law = "archard";
   std::vector<std::string> law_params;  // name=value
@@ -94,6 +95,7 @@ void run(const WearArgs& a) {
   job.allow_any_wear_factor = a.allow_any_wear_factor;
   job.quiet = a.quiet;
   job.depth_maps = !a.no_depth_maps;
+  job.plots = !a.no_plots;
   job.wear_law = a.wear_law;
   job.law_params = a.law_params;
   std::ostringstream id;
@@ -168,6 +170,9 @@ void add_wear_command(CLI::App& app) {
   cmd->add_flag("--no-depth-maps", args->no_depth_maps,
                 "write no DIR/wear_depth_<cycles>.vtp (a run whose maps would not fit in the "
                 "free space of DIR is refused with the estimate; above 2 GB a note says so)");
+  cmd->add_flag("--no-plots", args->no_plots,
+                "skip DIR/wear.png and DIR/depth_map.png (the CSV, JSON and VTK results are the "
+                "same)");
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
   cmd->callback([args] {
     io::check_output_folder(args->out);  // before any work

@@ -4,12 +4,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#include <xmmintrin.h>
-#endif
 
 #include "engine/contact_law.h"
+#include "engine/due_masks.h"
 #include "engine/kinematics.h"
 #include "engine/sdf_pairs.h"
 
@@ -33,35 +30,11 @@ void update_contact_schedule(const Model& model, Data& data) {
     data.motion += delta.translation().norm() + angle * data.insert_radius;
   }
   data.X_FT_prev = X_FT;
-  // the due list in ascending order from bit masks of 64 elements: most elements sleep, and
-  // which ones is not predictable, so the comparisons run four at a time without a branch and
-  // only the due elements' bits are visited
+  // the due list in ascending order from bit masks of 64 elements: only the due elements'
+  // bits are visited
   const int n = model.insert.size();
-  const double* recheck_at = data.recheck_at.data();
-  const double motion = data.motion;
   uint64_t* masks = data.due_mask.data();
-  long count = 0;
-  for (int base = 0, w = 0; base < n; base += 64, ++w) {
-    const double* r = recheck_at + base;
-    uint64_t mask = 0;
-    int k = 0;
-#ifdef __SSE2__
-    if (n - base >= 64) {
-      const __m128d limit = _mm_set1_pd(motion);
-      for (; k < 64; k += 4) {
-        const __m128 lo = _mm_castpd_ps(_mm_cmple_pd(_mm_loadu_pd(r + k), limit));
-        const __m128 hi = _mm_castpd_ps(_mm_cmple_pd(_mm_loadu_pd(r + k + 2), limit));
-        // one 32-bit half of each 64-bit comparison: four mask bits at once
-        const unsigned four =
-            static_cast<unsigned>(_mm_movemask_ps(_mm_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0))));
-        mask |= static_cast<uint64_t>(four) << k;
-      }
-    }
-#endif
-    for (; k < std::min(64, n - base); ++k) mask |= static_cast<uint64_t>(r[k] <= motion) << k;
-    masks[w] = mask;
-    count += std::popcount(mask);
-  }
+  const long count = find_due_masks(data.recheck_at.data(), n, data.motion, masks);
   data.due.resize(count);  // capacity reserved (make_data); grows by a few entries at most
   int* due = data.due.data();
   for (int base = 0, w = 0; base < n; base += 64, ++w) {
@@ -418,7 +391,7 @@ void calc_contact(const Model& model, const State& state, Data& data) {
   data.in_contact.clear();
   const ElementLoop loop(model, state, data);
   ContactReduction reduction(model, state);
-  if (n > kParallelAbove) {
+  if (n > kParallelAbove && model.threads > 1) {
     // element-local evaluation in parallel (each element writes only its own slots), then the
     // reduction in element order: bit-identical for any thread count
 #pragma omp parallel num_threads(model.threads)

@@ -1,9 +1,10 @@
 // Determinism (design.md): the same inputs give bit-identical results for any thread count.
 // Reference: equality of engine::hash_state (FNV-1a over every bit of the State) after a run
 // with model.threads = 1 and 2, and bit equality of the femoral distance field built with 1
-// and 2 OpenMP threads (the build's z-slab ownership, engine/sdf.h). The contact loop goes
-// parallel only above a candidate count (engine/contact.cpp); the steps that took that path
-// are counted and reported, and at least the first step (every element due) must have.
+// and 2 OpenMP threads (the build's z-slab ownership, engine/sdf.h). With 2 threads the
+// contact loop goes parallel above a candidate count (engine/contact.cpp), with 1 it stays in
+// the batched loop: those steps compare the two loops. They are counted and reported, and at
+// least the first step (every element due) must be one.
 #include <doctest/doctest.h>
 
 #include <omp.h>

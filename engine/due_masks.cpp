@@ -65,7 +65,13 @@ namespace {
   return count;
 }
 
-const bool kCpuHasAvx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+// read once, at static initialization: __builtin_cpu_init first, as GCC asks of a check that
+// may run before libgcc's own constructor
+bool detect_avx2() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+}
+const bool kCpuHasAvx2 = detect_avx2();
 
 }  // namespace
 #endif

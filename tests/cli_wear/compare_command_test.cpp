@@ -64,12 +64,17 @@ TEST_CASE("kneesim compare killed mid-way: --resume finishes it with the uninter
   const auto peek = nlohmann::json::parse(slurp(cut / "peek" / "summary.json"));
   CHECK(peek.contains("resumed_after_update"));
   CHECK(fs::exists(cut / "comparison.csv"));
+  CHECK(fs::exists(cut / "compare_wear.png"));
 
   // a finished run under other settings is not taken for this one: --resume with another
-  // friction simulates again and gives other volumes
-  const Result r3 = run_kneesim(args(cut, {"--resume", "--set", "contact.friction=0.02"}),
-                                tmp.path, "other");
+  // friction simulates again and gives other volumes; with --no-plots, the previous plots are
+  // gone and none is drawn, and the tables are written
+  const Result r3 = run_kneesim(
+      args(cut, {"--resume", "--set", "contact.friction=0.02", "--no-plots"}), tmp.path, "other");
   INFO("stderr: " << r3.err);
   REQUIRE(r3.exit_code == 0);
   CHECK_FALSE(same_bytes(slurp(cut / "uhmwpe" / "wear.csv"), slurp(ref / "uhmwpe" / "wear.csv")));
+  CHECK(fs::exists(cut / "comparison.csv"));
+  CHECK_FALSE(fs::exists(cut / "compare_wear.png"));
+  CHECK_FALSE(fs::exists(cut / "uhmwpe" / "wear.png"));
 }

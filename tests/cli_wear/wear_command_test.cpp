@@ -178,13 +178,17 @@ TEST_CASE("kneesim wear: bad input is one line on stderr and exit 2, nothing wri
                              "1000000", "--set", "implant.edge_length_mm=2"},
                             tmp.path),
                 "corrupt", out);
-  // control: the override accepts the out-of-range factor (the refusal above is the range's)
+  // control: the override accepts the out-of-range factor (the refusal above is the range's);
+  // --no-plots draws no PNG and writes the rest
   const Result ok = run_kneesim({"wear", "--out", out.string(), "--quiet", "--cycles", "2",
                                  "--update-every", "1", "--set", "implant.edge_length_mm=2",
                                  "--set", "material.wear_factor_mm3_per_Nmm=1e-5",
-                                 "--allow-any-wear-factor"},
+                                 "--allow-any-wear-factor", "--no-plots"},
                                 tmp.path);
   INFO("stderr: " << ok.err);
   CHECK(ok.exit_code == 0);
   CHECK(fs::exists(out / "summary.json"));
+  CHECK(fs::exists(out / "wear.csv"));
+  CHECK_FALSE(fs::exists(out / "wear.png"));
+  CHECK_FALSE(fs::exists(out / "depth_map.png"));
 }

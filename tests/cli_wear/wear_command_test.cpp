@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
 
@@ -191,4 +192,39 @@ TEST_CASE("kneesim wear: bad input is one line on stderr and exit 2, nothing wri
   CHECK(fs::exists(out / "wear.csv"));
   CHECK_FALSE(fs::exists(out / "wear.png"));
   CHECK_FALSE(fs::exists(out / "depth_map.png"));
+}
+
+TEST_CASE("kneesim wear --convergence: one run per interval and the table against the finest") {
+  // the update-interval study end to end (it had no CLI test): 4 cycles at intervals 2 and 1
+  // on the coarse insert. Reference: the finest interval's row changes by exactly 0 %, each
+  // interval's folder holds its own wear run, and --no-plots reaches every interval's job
+  TempDir tmp;
+  const fs::path out = tmp.path / "conv";
+  const Result r = run_kneesim({"wear", "--out", out.string(), "--quiet", "--cycles", "4",
+                                "--convergence", "2,1", "--set", "implant.edge_length_mm=2",
+                                "--no-plots"},
+                               tmp.path);
+  INFO("stderr: " << r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::vector<std::string> lines = split(slurp(out / "convergence.csv"), '\n');
+  REQUIRE(lines.size() >= 3);
+  const std::vector<std::string> cols = split(lines[0], ',');
+  const auto col = [&](const char* name) {
+    return std::find(cols.begin(), cols.end(), name) - cols.begin();
+  };
+  REQUIRE(col("volume_change_pct") < static_cast<long>(cols.size()));
+  for (size_t i = 1; i <= 2; ++i) {
+    const std::vector<std::string> row = split(lines[i], ',');
+    REQUIRE(row.size() == cols.size());
+    const long every = std::lround(std::stod(row[col("update_every")]));
+    CAPTURE(every);
+    CHECK(std::stod(row[col("updates")]) == doctest::Approx(4.0 / every));
+    CHECK(std::stod(row[col("volume_mm3")]) > 0.0);
+    if (every == 1) CHECK(std::stod(row[col("volume_change_pct")]) == 0.0);
+    const fs::path dir = out / ("every_" + std::to_string(every));
+    CHECK(fs::exists(dir / "wear.csv"));
+    CHECK(fs::exists(dir / "summary.json"));
+    CHECK_FALSE(fs::exists(dir / "wear.png"));
+  }
+  CHECK(fs::exists(out / "convergence.md"));
 }

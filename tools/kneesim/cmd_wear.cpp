@@ -45,6 +45,7 @@ void run_convergence(const WearArgs& a, const std::vector<models::Override>& ove
     job.out = fs::path(a.out) / ("every_" + std::to_string(every));
     job.quiet = true;
     job.depth_maps = false;
+    job.plots = !a.no_plots;
     job.allow_any_wear_factor = a.allow_any_wear_factor;
     job.identity_text = "convergence " + std::to_string(every);
     run::check_wear_job(job);

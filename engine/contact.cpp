@@ -411,10 +411,10 @@ void calc_contact(const Model& model, const State& state, Data& data) {
   } else {
     // the same in batches of three passes: the fine distances of the batch, two elements at a
     // time (loads of independent elements overlap, no contact test between them to
-    // mispredict), the coarse field's distances of those beyond the band (listed without a
-    // branch, sampled in pairs too),
-    // then each element's sleep or contact in due order, its terms going to the reduction as
-    // it is evaluated. The arithmetic per element is evaluate()'s, so are the bits.
+    // mispredict); the coarse field's distances of those beyond the band (listed without a
+    // branch, sampled in pairs too); then each element's sleep or contact in due order, its
+    // terms going to the reduction as it is evaluated. The arithmetic per element is
+    // evaluate()'s, so are the bits.
     const ElementLoop local = loop;
     ContactTerms terms;
     constexpr int kBatch = 64;

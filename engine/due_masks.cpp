@@ -12,6 +12,17 @@
 #endif
 
 namespace kneesim::engine {
+namespace {
+
+// the bits of elements r[k .. end) of a word, one comparison each: a last word of fewer than
+// 64 elements (both kernels; plain code inlines into the AVX2 one)
+inline uint64_t tail_mask(const double* r, int k, int end, double motion) {
+  uint64_t mask = 0;
+  for (; k < end; ++k) mask |= static_cast<uint64_t>(r[k] <= motion) << k;
+  return mask;
+}
+
+}  // namespace
 
 long find_due_masks_baseline(const double* recheck_at, int n, double motion, uint64_t* masks) {
   long count = 0;
@@ -32,7 +43,7 @@ long find_due_masks_baseline(const double* recheck_at, int n, double motion, uin
       }
     }
 #endif
-    for (; k < std::min(64, n - base); ++k) mask |= static_cast<uint64_t>(r[k] <= motion) << k;
+    mask |= tail_mask(r, k, std::min(64, n - base), motion);
     masks[w] = mask;
     count += std::popcount(mask);
   }
@@ -58,7 +69,7 @@ namespace {
         mask |= static_cast<uint64_t>(static_cast<unsigned>(_mm256_movemask_pd(due))) << k;
       }
     }
-    for (; k < std::min(64, n - base); ++k) mask |= static_cast<uint64_t>(r[k] <= motion) << k;
+    mask |= tail_mask(r, k, std::min(64, n - base), motion);
     masks[w] = mask;
     count += __builtin_popcountll(mask);
   }

@@ -20,7 +20,7 @@
 #include "engine/sdf.h"
 #include "engine/solid/solid.h"
 #include "engine/solid/surface_contact.h"
-#include "loads/iso14243/waveform.h"
+#include "engine/waveform.h"
 
 namespace kneesim::engine {
 
@@ -103,7 +103,7 @@ struct Model {
   SignedDistanceField femur_sdf;           // femoral component, F frame, fine, narrow band
   SignedDistanceField femur_far_sdf;       // coarse and wide: how long far elements may sleep
   double femur_radius = 0.0;               // max |p_F| of the femoral surface [m] (0: unknown)
-  loads::Waveform gait;                    // periodic gait waveforms
+  Waveform gait;                           // periodic gait waveforms
   double period = 1.0;                     // gait cycle duration [s]
   double dt = 1e-4;                        // time step [s] (from calc_stable_time_step)
   double dt_critical = 1e-4;               // estimated stability limit [s]

@@ -55,7 +55,7 @@ loads::MeasuredLoadSpec measured_load_spec(const Config& c) {
 // kinematics file, the measured channels are merged in (sampled every 0.25 %); a measured
 // load table's rig channels replace the file's
 loads::Waveform make_gait(const Config& c, const loads::Waveform* measured_cycle) {
-  loads::Waveform gait = loads::Waveform::load(resolve_path(c, c.gait_file));
+  loads::Waveform gait = loads::load_waveform(resolve_path(c, c.gait_file));
   loads::WaveformConventions conv;
   conv.ap_sign = c.ap_sign;
   conv.ie_sign = c.ie_sign;

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "analysis/diagnosis/effect.h"
+#include "loads/iso14243/waveform.h"
 #include "models/build_model.h"
 
 namespace kneesim::diagnosis {

@@ -37,7 +37,7 @@ constexpr double kEnd = 2.25;        // end of the record [s]
 // the synthetic table: time_s, total_N, flexion_deg, medial_N (the medial column filled with
 // the baseline's share of 0.6 here; the tests replace it)
 std::string loads_table() {
-  const auto w = loads::Waveform::load(std::string(KNEESIM_SOURCE_DIR) +
+  const auto w = loads::load_waveform(std::string(KNEESIM_SOURCE_DIR) +
                                        "/loads/iso14243/iso14243_1_approx.csv");
   const int ax = w.channel("axial_force_N"), fe = w.channel("flexion_deg");
   std::ostringstream o;

@@ -1,5 +1,5 @@
 // Fuzz harness: the gait tables. The first byte picks the reader: the waveform file
-// (loads::Waveform::load, CSV table or key points) or the measured kinematics (CSV or OpenSim
+// (loads::load_waveform, CSV table or key points) or the measured kinematics (CSV or OpenSim
 // .sto, loads::read_kinematics). Contract: load or InputError.
 #include <cstddef>
 #include <cstdint>
@@ -15,7 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto file = kneesim::fuzz::write_input(data + 1, size - 1, variant == 2 ? ".sto" : ".csv");
   try {
     if (variant == 0) {
-      kneesim::loads::Waveform::load(file);
+      kneesim::loads::load_waveform(file);
     } else {
       kneesim::loads::to_waveform(kneesim::loads::read_kinematics(file));
     }

@@ -15,6 +15,8 @@
 #include "temp_dir.h"
 
 using kneesim::InputError;
+using kneesim::loads::delay_channels;
+using kneesim::loads::load_waveform;
 using kneesim::loads::Waveform;
 using kneesim::test::TempDir;
 
@@ -26,7 +28,7 @@ std::filesystem::path source_dir() {
 }
 
 Waveform shipped(const char* name) {
-  return Waveform::load(source_dir() / "loads/iso14243" / name);
+  return load_waveform(source_dir() / "loads/iso14243" / name);
 }
 
 // the message of the InputError thrown by loading `text`, or "" when none is thrown
@@ -34,7 +36,7 @@ std::string load_error(const std::string& text) {
   TempDir dir;
   auto file = dir.write("w.csv", text);
   try {
-    Waveform::load(file);
+    load_waveform(file);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -120,7 +122,7 @@ TEST_CASE("table form interpolates linearly and wraps to the first row") {
                         "20, 10, 300\n"
                         "\n"
                         "60, 30, 200\n");
-  Waveform w = Waveform::load(file);
+  Waveform w = load_waveform(file);
   CHECK(w.channel_names() == std::vector<std::string>{"flexion_deg", "axial_force_N"});
   CHECK(w.interpolation(0) == kneesim::loads::Interpolation::linear);
   CHECK(w.value(0, 15.0) == doctest::Approx(5.0));
@@ -169,7 +171,7 @@ TEST_CASE("every load error names the file and the place") {
   TempDir dir;
   const auto missing = dir.path / "nope.csv";
   try {
-    Waveform::load(missing);
+    load_waveform(missing);
     FAIL("no error for a missing file");
   } catch (const InputError& e) {
     CHECK(std::string(e.what()) == missing.string() + ": file not found (or not a regular file).");
@@ -220,7 +222,7 @@ TEST_CASE("a CSV saved as \"CSV UTF-8\" (byte-order mark) reads like a plain one
   const std::string body = "gait_pct,a_N\n0,1\n50,3\n";
   CHECK(load_error("\xEF\xBB\xBF" + body).empty());
   TempDir dir;
-  const Waveform w = Waveform::load(dir.write("bom.csv", "\xEF\xBB\xBF" + body));
+  const Waveform w = load_waveform(dir.write("bom.csv", "\xEF\xBB\xBF" + body));
   CHECK(w.channel_name(0) == "a_N");
   CHECK(w.value(0, 25.0) == doctest::Approx(2.0));
   // only at the start of the file

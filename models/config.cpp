@@ -39,7 +39,19 @@ struct Field {
   std::string allowed;
   const double* number = nullptr;  // the target of a number key
   double lo = 0.0, hi = 0.0;       // its allowed range
+  std::string type;                // "number", "integer", "text", ... (config reference)
+  std::string meaning;             // one line, for `kneesim config --reference`
+  std::function<std::string()> show;  // the target's current value in TOML syntax
 };
+
+std::string toml_number(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
+std::string toml_text(const std::string& v) { return "\"" + v + "\""; }
 
 [[noreturn]] void fail_value(const std::string& where, const std::string& key, const Value& v,
                              const std::string& allowed) {
@@ -49,7 +61,8 @@ struct Field {
 
 class Registry {
  public:
-  void number(const std::string& key, double& target, double lo, double hi) {
+  void number(const std::string& key, double& target, double lo, double hi,
+              const std::string& meaning) {
     std::ostringstream a;
     a << "a number in [" << lo << ", " << hi << "]";
     const std::string allowed = a.str();
@@ -59,9 +72,10 @@ class Registry {
                         fail_value(where, key, v, allowed);
                       target = *d;
                     },
-                    allowed, &target, lo, hi};
+                    allowed, &target, lo, hi, "number", meaning,
+                    [&target] { return toml_number(target); }};
   }
-  void integer(const std::string& key, int& target, int lo, int hi) {
+  void integer(const std::string& key, int& target, int lo, int hi, const std::string& meaning) {
     const std::string allowed =
         "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
     fields_[key] = {[&target, key, lo, hi, allowed](const Value& v, const std::string& where) {
@@ -70,26 +84,30 @@ class Registry {
                         fail_value(where, key, v, allowed);
                       target = static_cast<int>(*d);
                     },
-                    allowed};
+                    allowed, nullptr, 0.0, 0.0, "integer", meaning,
+                    [&target] { return std::to_string(target); }};
   }
   // a sign flip: exactly -1 or +1 (a fraction would silently scale the channel)
-  void sign(const std::string& key, double& target) {
+  void sign(const std::string& key, double& target, const std::string& meaning) {
     fields_[key] = {[&target, key](const Value& v, const std::string& where) {
                       const double* d = std::get_if<double>(&v);
                       if (!d || (*d != 1.0 && *d != -1.0)) fail_value(where, key, v, "-1 or 1");
                       target = *d;
                     },
-                    "-1 or 1"};
+                    "-1 or 1", nullptr, 0.0, 0.0, "sign", meaning,
+                    [&target] { return toml_number(target); }};
   }
-  void text(const std::string& key, std::string& target) {
+  void text(const std::string& key, std::string& target, const std::string& meaning) {
     fields_[key] = {[&target, key](const Value& v, const std::string& where) {
                       const std::string* s = std::get_if<std::string>(&v);
                       if (!s) fail_value(where, key, v, "a string");
                       target = *s;
                     },
-                    "a string"};
+                    "a string", nullptr, 0.0, 0.0, "text", meaning,
+                    [&target] { return toml_text(target); }};
   }
-  void choice(const std::string& key, std::string& target, std::vector<std::string> options) {
+  void choice(const std::string& key, std::string& target, std::vector<std::string> options,
+              const std::string& meaning) {
     std::string allowed = "one of";
     for (const auto& o : options) allowed += " \"" + o + "\"";
     fields_[key] = {[&target, key, options, allowed](const Value& v, const std::string& where) {
@@ -98,25 +116,32 @@ class Registry {
                         fail_value(where, key, v, allowed);
                       target = *s;
                     },
-                    allowed};
+                    allowed, nullptr, 0.0, 0.0, "choice", meaning,
+                    [&target] { return toml_text(target); }};
   }
-  void flag(const std::string& key, bool& target) {
+  void flag(const std::string& key, bool& target, const std::string& meaning) {
     fields_[key] = {[&target, key](const Value& v, const std::string& where) {
                       const bool* b = std::get_if<bool>(&v);
                       if (!b) fail_value(where, key, v, "true or false");
                       target = *b;
                     },
-                    "true or false"};
+                    "true or false", nullptr, 0.0, 0.0, "boolean", meaning,
+                    [&target] { return std::string(target ? "true" : "false"); }};
   }
-  void vec3(const std::string& key, std::array<double, 3>& target) {
+  void vec3(const std::string& key, std::array<double, 3>& target, const std::string& meaning) {
     fields_[key] = {[&target, key](const Value& v, const std::string& where) {
                       const auto* l = std::get_if<std::vector<double>>(&v);
                       if (!l || l->size() != 3) fail_value(where, key, v, "a list of 3 numbers");
                       for (int i = 0; i < 3; ++i) target[i] = (*l)[i];
                     },
-                    "a list of 3 numbers"};
+                    "a list of 3 numbers", nullptr, 0.0, 0.0, "list of 3 numbers", meaning,
+                    [&target] {
+                      return "[" + toml_number(target[0]) + ", " + toml_number(target[1]) + ", " +
+                             toml_number(target[2]) + "]";
+                    }};
   }
-  void list(const std::string& key, std::vector<double>& target, double lo, double hi) {
+  void list(const std::string& key, std::vector<double>& target, double lo, double hi,
+            const std::string& meaning) {
     std::ostringstream a;
     a << "a list of numbers in [" << lo << ", " << hi << "]";
     const std::string allowed = a.str();
@@ -127,16 +152,30 @@ class Registry {
                         if (!std::isfinite(x) || x < lo || x > hi) fail_value(where, key, v, allowed);
                       target = *l;
                     },
-                    allowed};
+                    allowed, nullptr, 0.0, 0.0, "list of numbers", meaning,
+                    [&target] {
+                      std::string s = "[";
+                      for (size_t i = 0; i < target.size(); ++i)
+                        s += (i ? ", " : "") + toml_number(target[i]);
+                      return s + "]";
+                    }};
   }
-  void strings(const std::string& key, std::vector<std::string>& target) {
+  void strings(const std::string& key, std::vector<std::string>& target,
+               const std::string& meaning) {
     fields_[key] = {[&target, key](const Value& v, const std::string& where) {
                       const auto* l = io::as_string_list(v);
                       if (!l) fail_value(where, key, v, "a list of strings");
                       target = *l;
                     },
-                    "a list of strings"};
+                    "a list of strings", nullptr, 0.0, 0.0, "list of strings", meaning,
+                    [&target] {
+                      std::string s = "[";
+                      for (size_t i = 0; i < target.size(); ++i)
+                        s += (i ? ", " : "") + toml_text(target[i]);
+                      return s + "]";
+                    }};
   }
+  const std::map<std::string, Field>& fields() const { return fields_; }
   const Field* find(const std::string& key) const {
     auto it = fields_.find(key);
     return it == fields_.end() ? nullptr : &it->second;
@@ -159,127 +198,233 @@ const std::vector<std::string> kDofModes = {"locked", "free", "prescribed", "for
 const std::vector<std::string> kDofKeys = {"ap", "is", "ml", "vv", "ie", "fe"};
 
 void register_material(Registry& r, const std::string& prefix, MaterialConfig& m) {
-  r.number(prefix + "elastic_modulus_MPa", m.elastic_modulus_MPa, 1.0, 1e6);
-  r.number(prefix + "poisson", m.poisson, 0.0, 0.49);
-  r.number(prefix + "yield_MPa", m.yield_MPa, 0.0, 1e4);
-  r.number(prefix + "density_g_per_cm3", m.density_g_per_cm3, 0.1, 30.0);
-  r.number(prefix + "friction", m.friction, 0.0, 1.0);
-  r.number(prefix + "wear_factor_mm3_per_Nmm", m.wear_factor_mm3_per_Nmm, 0.0, 1e-3);
-  r.text(prefix + "source", m.source);
+  r.number(prefix + "elastic_modulus_MPa", m.elastic_modulus_MPa, 1.0, 1e6,
+    "Young's modulus of the insert material");
+  r.number(prefix + "poisson", m.poisson, 0.0, 0.49,
+    "Poisson's ratio of the insert material");
+  r.number(prefix + "yield_MPa", m.yield_MPa, 0.0, 1e4,
+    "yield stress of the insert material (deformable insert, particles)");
+  r.number(prefix + "density_g_per_cm3", m.density_g_per_cm3, 0.1, 30.0,
+    "density (gravimetric wear = volume x density)");
+  r.number(prefix + "friction", m.friction, 0.0, 1.0,
+    "Coulomb friction coefficient against the CoCr femoral component");
+  r.number(prefix + "wear_factor_mm3_per_Nmm", m.wear_factor_mm3_per_Nmm, 0.0, 1e-3,
+    "wear factor k of the wear law (Archard: dh = k p ds sqrt(1 + 3 mu^2))");
+  r.text(prefix + "source", m.source,
+    "where the material's values come from (reported in outputs)");
 }
 
 Registry make_registry(Config& c) {
   Registry r;
-  r.choice("implant.kind", c.implant_kind, {"generic", "mesh"});
-  r.number("implant.edge_length_mm", c.edge_length_mm, 0.2, 5.0);
-  r.number("implant.generic.femur_distal_radius_mm", c.femur_distal_radius_mm, 15, 80);
-  r.number("implant.generic.femur_posterior_radius_mm", c.femur_posterior_radius_mm, 10, 60);
-  r.number("implant.generic.femur_coronal_radius_mm", c.femur_coronal_radius_mm, 5, 1000);
-  r.number("implant.generic.condyle_width_mm", c.condyle_width_mm, 8, 40);
-  r.number("implant.generic.condyle_spacing_mm", c.condyle_spacing_mm, 20, 70);
-  r.number("implant.generic.insert_sagittal_radius_mm", c.insert_sagittal_radius_mm, 20, 1000);
-  r.number("implant.generic.insert_coronal_radius_mm", c.insert_coronal_radius_mm, 5, 1000);
-  r.number("implant.generic.insert_thickness_mm", c.insert_thickness_mm, 4, 30);
-  r.number("implant.generic.insert_ap_depth_mm", c.insert_ap_depth_mm, 25, 80);
-  r.number("implant.generic.insert_ml_width_mm", c.insert_ml_width_mm, 40, 100);
-  r.text("implant.mesh.femur", c.femur_mesh);
-  r.text("implant.mesh.insert", c.insert_mesh);
-  r.choice("implant.mesh.units", c.mesh_units, {"m", "mm"});
-  r.vec3("implant.mesh.rotation_deg", c.mesh_rotation_deg);
-  r.flag("implant.mesh.left_knee", c.mesh_left_knee);
-  r.vec3("implant.mesh.femur_origin_mm", c.femur_origin_mm);
-  r.number("implant.mesh.insert_base_y_mm", c.insert_base_y_mm, -100, 100);
-  r.number("implant.mesh.articular_min_normal_y", c.articular_min_normal_y, -1, 1);
-  r.flag("implant.mesh.insert_closed", c.insert_closed);
+  r.choice("implant.kind", c.implant_kind, {"generic", "mesh"},
+    "the built-in parametric implant (\"generic\") or your own meshes (\"mesh\")");
+  r.number("implant.edge_length_mm", c.edge_length_mm, 0.2, 5.0,
+    "target edge length of the rigid insert's articular elements");
+  r.number("implant.generic.femur_distal_radius_mm", c.femur_distal_radius_mm, 15, 80,
+    "generic implant: femoral condyle sagittal radius, distal arc");
+  r.number("implant.generic.femur_posterior_radius_mm", c.femur_posterior_radius_mm, 10, 60,
+    "generic implant: femoral condyle sagittal radius, posterior arc");
+  r.number("implant.generic.femur_coronal_radius_mm", c.femur_coronal_radius_mm, 5, 1000,
+    "generic implant: femoral condyle coronal radius");
+  r.number("implant.generic.condyle_width_mm", c.condyle_width_mm, 8, 40,
+    "generic implant: width of each femoral condyle");
+  r.number("implant.generic.condyle_spacing_mm", c.condyle_spacing_mm, 20, 70,
+    "generic implant: medial-lateral distance between condyle centres");
+  r.number("implant.generic.insert_sagittal_radius_mm", c.insert_sagittal_radius_mm, 20, 1000,
+    "generic implant: insert dish sagittal radius");
+  r.number("implant.generic.insert_coronal_radius_mm", c.insert_coronal_radius_mm, 5, 1000,
+    "generic implant: insert dish coronal radius");
+  r.number("implant.generic.insert_thickness_mm", c.insert_thickness_mm, 4, 30,
+    "generic implant: insert thickness under the dwell points");
+  r.number("implant.generic.insert_ap_depth_mm", c.insert_ap_depth_mm, 25, 80,
+    "generic implant: insert anterior-posterior depth");
+  r.number("implant.generic.insert_ml_width_mm", c.insert_ml_width_mm, 40, 100,
+    "generic implant: insert medial-lateral width");
+  r.text("implant.mesh.femur", c.femur_mesh,
+    "femoral component mesh (STL, OBJ, PLY); ${KNEESIM_DATA} is expanded, relative to the config");
+  r.text("implant.mesh.insert", c.insert_mesh,
+    "tibial insert mesh (STL, OBJ, PLY), closed unless insert_closed = false");
+  r.choice("implant.mesh.units", c.mesh_units, {"m", "mm"},
+    "length unit of both mesh files");
+  r.vec3("implant.mesh.rotation_deg", c.mesh_rotation_deg,
+    "rotation about x, y, z (applied in that order) from the mesh frame into the project frame (+x anterior, +y superior, +z lateral)");
+  r.flag("implant.mesh.left_knee", c.mesh_left_knee,
+    "mirror z after rotation (left knees)");
+  r.vec3("implant.mesh.femur_origin_mm", c.femur_origin_mm,
+    "flexion-extension axis centre of the femoral component in the rotated mesh frame");
+  r.number("implant.mesh.insert_base_y_mm", c.insert_base_y_mm, -100, 100,
+    "height of the insert's base plane in the rotated frame (layer thickness is measured from it)");
+  r.number("implant.mesh.articular_min_normal_y", c.articular_min_normal_y, -1, 1,
+    "insert faces whose normal's y component is below this are not articular");
+  r.flag("implant.mesh.insert_closed", c.insert_closed,
+    "require a closed (watertight) insert mesh, needed for the volume loss");
 
-  r.text("material.name", c.material.name);
+  r.text("material.name", c.material.name,
+    "insert material: a library name (models/materials.toml) or a [materials.<name>] table");
   register_material(r, "material.", c.material);
 
-  r.choice("contact.law", c.contact_law, {"linear", "nonlinear"});
-  r.number("contact.damping_ratio", c.contact_damping_ratio, 0.0, 1.0);
-  r.number("contact.sdf_spacing_mm", c.sdf_spacing_mm, 0.05, 2.0);
-  r.number("contact.sdf_band_mm", c.sdf_band_mm, 0.5, 10.0);
+  r.choice("contact.law", c.contact_law, {"linear", "nonlinear"},
+    "rigid insert's elastic-foundation law: p = -K ln(1 - d/h) (nonlinear) or p = K d/h (linear)");
+  r.number("contact.damping_ratio", c.contact_damping_ratio, 0.0, 1.0,
+    "contact damping as a fraction of critical for the stiffest contact mode");
+  r.number("contact.sdf_spacing_mm", c.sdf_spacing_mm, 0.05, 2.0,
+    "node spacing of the femoral signed distance field");
+  r.number("contact.sdf_band_mm", c.sdf_band_mm, 0.5, 10.0,
+    "half-width of the distance field's exact band around the femoral surface");
   r.number("contact.friction_regularization_mm_per_s", c.friction_regularization_mm_per_s, 1e-4,
-           100.0);
-  r.number("contact.runaway_fraction", c.runaway_fraction, 0.01, 0.95);
-  r.number("contact.friction", c.friction_override, 0.0, 1.0);
-  r.text("contact.law_file", c.contact_law_file);
-  r.number("contact.foundation_modulus_MPa", c.contact_foundation_modulus_MPa, 0.0, 1e6);
+           100.0,
+    "slip speed eps of the regularized Coulomb law t = -mu p v / sqrt(v^2 + eps^2)");
+  r.number("contact.runaway_fraction", c.runaway_fraction, 0.01, 0.95,
+    "a run stops as runaway when penetration exceeds this fraction of the layer thickness");
+  r.number("contact.friction", c.friction_override, 0.0, 1.0,
+    "friction coefficient replacing the material's (-1: the material's)");
+  r.text("contact.law_file", c.contact_law_file,
+    "a calibrated contact law (kneesim calibrate-contact) replacing contact.law and the foundation modulus");
+  r.number("contact.foundation_modulus_MPa", c.contact_foundation_modulus_MPa, 0.0, 1e6,
+    "foundation modulus replacing K = (1-nu)E/((1+nu)(1-2nu)) (0: the material's K)");
 
-  r.choice("rig.preset", c.rig_preset, {"stanmore", "materials_study", "displacement", "iso"});
+  r.choice("rig.preset", c.rig_preset, {"stanmore", "materials_study", "displacement", "iso"},
+    "simulator rig: DOFs, restraint and offsets (rig presets in the user guide)");
   for (int i = 0; i < 6; ++i) {
-    r.choice("rig.femur." + kDofKeys[i], c.femur_dofs[i], kDofModes);
-    r.choice("rig.tibia." + kDofKeys[i], c.tibia_dofs[i], kDofModes);
+    r.choice("rig.femur." + kDofKeys[i], c.femur_dofs[i], kDofModes,
+      "mode of the femoral carriage DOF: locked, free, prescribed (waveform) or force (waveform force plus restraint)");
+    r.choice("rig.tibia." + kDofKeys[i], c.tibia_dofs[i], kDofModes,
+      "mode of the tibial carriage DOF: locked, free, prescribed (waveform) or force (waveform force plus restraint)");
   }
-  r.number("rig.axial_offset_mm", c.axial_offset_mm, -30, 30);
-  r.number("rig.tibia_pivot_medial_mm", c.tibia_pivot_medial_mm, -30, 30);
-  r.number("rig.femur_vv_deg", c.femur_vv_deg, -15, 15);
-  r.number("rig.femur_mass_kg", c.femur_mass_kg, 0.01, 1000);
-  r.number("rig.tibia_mass_kg", c.tibia_mass_kg, 0.01, 1000);
-  r.number("rig.femur_inertia_kgm2", c.femur_inertia_kgm2, 1e-6, 100);
-  r.number("rig.tibia_inertia_kgm2", c.tibia_inertia_kgm2, 1e-6, 100);
-  r.number("rig.ap_damping_Ns_per_m", c.ap_damping_Ns_per_m, 0, 1e5);
-  r.number("rig.ml_damping_Ns_per_m", c.ml_damping_Ns_per_m, 0, 1e5);
-  r.number("rig.is_damping_Ns_per_m", c.is_damping_Ns_per_m, 0, 1e5);
-  r.number("rig.ie_damping_Nms_per_rad", c.ie_damping_Nms_per_rad, 0, 1e3);
-  r.number("rig.vv_damping_Nms_per_rad", c.vv_damping_Nms_per_rad, 0, 1e3);
-  r.choice("rig.restraint.kind", c.restraint, {"springs", "linear", "none"});
-  r.number("rig.restraint.gap_mm", c.gap_mm, 0, 20);
-  r.number("rig.restraint.k_anterior_N_per_mm", c.k_anterior_N_per_mm, 0, 1e4);
-  r.number("rig.restraint.k_posterior_N_per_mm", c.k_posterior_N_per_mm, 0, 1e4);
-  r.number("rig.restraint.k_inside_N_per_mm", c.k_inside_N_per_mm, 0, 1e4);
-  r.number("rig.restraint.spring_arm_mm", c.spring_arm_mm, 0, 200);
-  r.number("rig.restraint.ie_gap_deg", c.ie_gap_deg, 0, 45);
-  r.number("rig.restraint.k_ie_inside_Nm_per_deg", c.k_ie_inside_Nm_per_deg, 0, 100);
-  r.number("rig.restraint.k_ie_Nm_per_deg", c.k_ie_Nm_per_deg, 0, 100);
-  r.number("rig.alignment.femur_fe_axis_ap_mm", c.femur_fe_axis_ap_mm, -20, 20);
-  r.number("rig.alignment.femur_fe_axis_is_mm", c.femur_fe_axis_is_mm, -20, 20);
-  r.number("rig.alignment.tibia_ie_axis_ap_mm", c.tibia_ie_axis_ap_mm, -20, 20);
-  r.number("rig.alignment.tibia_ie_axis_ml_mm", c.tibia_ie_axis_ml_mm, -20, 20);
-  r.number("rig.alignment.femur_fe_deg", c.femur_fe_deg, -15, 15);
-  r.number("rig.alignment.femur_ie_deg", c.femur_ie_deg, -15, 15);
-  r.number("rig.alignment.insert_tilt_deg", c.insert_tilt_deg, -15, 15);
+  r.number("rig.axial_offset_mm", c.axial_offset_mm, -30, 30,
+    "medial offset of the axial load line");
+  r.number("rig.tibia_pivot_medial_mm", c.tibia_pivot_medial_mm, -30, 30,
+    "medial offset of the tibial varus-valgus and internal-external axis");
+  r.number("rig.femur_vv_deg", c.femur_vv_deg, -15, 15,
+    "varus-valgus alignment of the femoral component with locked femoral VV, + varus");
+  r.number("rig.femur_mass_kg", c.femur_mass_kg, 0.01, 1000,
+    "femoral carriage mass (each translational DOF)");
+  r.number("rig.tibia_mass_kg", c.tibia_mass_kg, 0.01, 1000,
+    "tibial carriage mass (each translational DOF)");
+  r.number("rig.femur_inertia_kgm2", c.femur_inertia_kgm2, 1e-6, 100,
+    "femoral carriage rotary inertia (each rotational DOF)");
+  r.number("rig.tibia_inertia_kgm2", c.tibia_inertia_kgm2, 1e-6, 100,
+    "tibial carriage rotary inertia (each rotational DOF)");
+  r.number("rig.ap_damping_Ns_per_m", c.ap_damping_Ns_per_m, 0, 1e5,
+    "carriage damper on anterior-posterior translation");
+  r.number("rig.ml_damping_Ns_per_m", c.ml_damping_Ns_per_m, 0, 1e5,
+    "carriage damper on medial-lateral translation");
+  r.number("rig.is_damping_Ns_per_m", c.is_damping_Ns_per_m, 0, 1e5,
+    "carriage damper on inferior-superior translation");
+  r.number("rig.ie_damping_Nms_per_rad", c.ie_damping_Nms_per_rad, 0, 1e3,
+    "carriage damper on internal-external rotation");
+  r.number("rig.vv_damping_Nms_per_rad", c.vv_damping_Nms_per_rad, 0, 1e3,
+    "carriage damper on varus-valgus rotation");
+  r.choice("rig.restraint.kind", c.restraint, {"springs", "linear", "none"},
+    "soft-tissue restraint: four AP springs at +-spring_arm (\"springs\"), AP and IE spring-gap (\"linear\"), or none");
+  r.number("rig.restraint.gap_mm", c.gap_mm, 0, 20,
+    "free AP play each side before the springs engage");
+  r.number("rig.restraint.k_anterior_N_per_mm", c.k_anterior_N_per_mm, 0, 1e4,
+    "spring stiffness beyond the gap, anterior tibial displacement");
+  r.number("rig.restraint.k_posterior_N_per_mm", c.k_posterior_N_per_mm, 0, 1e4,
+    "spring stiffness beyond the gap, posterior tibial displacement");
+  r.number("rig.restraint.k_inside_N_per_mm", c.k_inside_N_per_mm, 0, 1e4,
+    "AP stiffness inside the gap");
+  r.number("rig.restraint.spring_arm_mm", c.spring_arm_mm, 0, 200,
+    "lever arm of the four AP springs from the IE axis (\"springs\")");
+  r.number("rig.restraint.ie_gap_deg", c.ie_gap_deg, 0, 45,
+    "free IE play each side before the rotational spring engages (\"linear\")");
+  r.number("rig.restraint.k_ie_inside_Nm_per_deg", c.k_ie_inside_Nm_per_deg, 0, 100,
+    "IE stiffness inside the IE gap (\"linear\")");
+  r.number("rig.restraint.k_ie_Nm_per_deg", c.k_ie_Nm_per_deg, 0, 100,
+    "IE stiffness beyond the IE gap (\"linear\")");
+  r.number("rig.alignment.femur_fe_axis_ap_mm", c.femur_fe_axis_ap_mm, -20, 20,
+    "FE axis relative to the femoral component, + anterior (Pal 2008 variable)");
+  r.number("rig.alignment.femur_fe_axis_is_mm", c.femur_fe_axis_is_mm, -20, 20,
+    "FE axis relative to the femoral component, + superior (Pal 2008 variable)");
+  r.number("rig.alignment.tibia_ie_axis_ap_mm", c.tibia_ie_axis_ap_mm, -20, 20,
+    "tibial IE and VV axis relative to the insert, + anterior (Pal 2008 variable)");
+  r.number("rig.alignment.tibia_ie_axis_ml_mm", c.tibia_ie_axis_ml_mm, -20, 20,
+    "tibial IE and VV axis relative to the rig pivot, + lateral (Pal 2008 variable)");
+  r.number("rig.alignment.femur_fe_deg", c.femur_fe_deg, -15, 15,
+    "femoral component turned on its carriage about z, + flexion (Pal 2008 variable)");
+  r.number("rig.alignment.femur_ie_deg", c.femur_ie_deg, -15, 15,
+    "femoral component turned on its carriage about y (Pal 2008 variable)");
+  r.number("rig.alignment.insert_tilt_deg", c.insert_tilt_deg, -15, 15,
+    "insert turned about z through its base centre, + posterior slope (Pal 2008 variable)");
 
-  r.text("gait.file", c.gait_file);
-  r.text("gait.kinematics_file", c.kinematics_file);
-  r.number("gait.period_s", c.period_s, 0.1, 100);
-  r.sign("gait.ap_sign", c.ap_sign);
-  r.sign("gait.ie_sign", c.ie_sign);
-  r.number("gait.axial_force_scale", c.axial_force_scale, 0, 10);
-  r.number("gait.ap_force_scale", c.ap_force_scale, 0, 10);
-  r.number("gait.ie_torque_scale", c.ie_torque_scale, 0, 10);
-  r.number("gait.vv_torque_axial_arm_mm", c.vv_torque_axial_arm_mm, -50, 50);
-  r.number("gait.vv_torque_stance_arm_mm", c.vv_torque_stance_arm_mm, -50, 50);
-  r.text("gait.measured.file", c.measured_file);
-  r.text("gait.measured.time_column", c.measured_time_column);
-  r.choice("gait.measured.time_unit", c.measured_time_unit, {"", "s", "ms", "pct"});
-  r.list("gait.measured.window", c.measured_window, -1e6, 1e6);
-  r.text("gait.measured.force_unit", c.measured_force_unit);
-  r.text("gait.measured.moment_unit", c.measured_moment_unit);
-  r.text("gait.measured.angle_unit", c.measured_angle_unit);
-  r.text("gait.measured.length_unit", c.measured_length_unit);
-  r.strings("gait.measured.channels", c.measured_channels);
-  r.strings("gait.measured.compare", c.measured_compare);
-  r.number("gait.ap_force_shift_pct", c.ap_force_shift_pct, -50, 50);
-  r.number("gait.ie_torque_shift_pct", c.ie_torque_shift_pct, -50, 50);
+  r.text("gait.file", c.gait_file,
+    "gait waveform (CSV table or key points; empty: the shipped approximate ISO 14243-1, or 14243-3 for displacement)");
+  r.text("gait.kinematics_file", c.kinematics_file,
+    "measured kinematics prescribed in displacement mode (CSV gait_pct, ap_mm, ie_deg, or .sto)");
+  r.number("gait.period_s", c.period_s, 0.1, 100,
+    "duration of one gait cycle");
+  r.sign("gait.ap_sign", c.ap_sign,
+    "sign convention of the waveform's AP channel");
+  r.sign("gait.ie_sign", c.ie_sign,
+    "sign convention of the waveform's IE channel");
+  r.number("gait.axial_force_scale", c.axial_force_scale, 0, 10,
+    "factor on the axial force waveform");
+  r.number("gait.ap_force_scale", c.ap_force_scale, 0, 10,
+    "factor on the AP force waveform");
+  r.number("gait.ie_torque_scale", c.ie_torque_scale, 0, 10,
+    "factor on the IE torque waveform");
+  r.number("gait.vv_torque_axial_arm_mm", c.vv_torque_axial_arm_mm, -50, 50,
+    "tibial VV torque = arm x axial force (the load line moved medially), + varus");
+  r.number("gait.vv_torque_stance_arm_mm", c.vv_torque_stance_arm_mm, -50, 50,
+    "tibial VV torque = arm x stance shape x axial force (zero in swing), + varus");
+  r.text("gait.measured.file", c.measured_file,
+    "measured load table (CSV) driving rig channels over one gait cycle");
+  r.text("gait.measured.time_column", c.measured_time_column,
+    "time column of the measured table (empty: the first)");
+  r.choice("gait.measured.time_unit", c.measured_time_unit, {"", "s", "ms", "pct"},
+    "unit of the time column (empty: from the header)");
+  r.list("gait.measured.window", c.measured_window, -1e6, 1e6,
+    "[start, end] of one gait cycle from heel strike, in the time column's unit");
+  r.text("gait.measured.force_unit", c.measured_force_unit,
+    "unit of force columns whose header carries none (N, kN, lbf)");
+  r.text("gait.measured.moment_unit", c.measured_moment_unit,
+    "unit of moment columns whose header carries none (Nm, Nmm, lbf*in)");
+  r.text("gait.measured.angle_unit", c.measured_angle_unit,
+    "unit of angle columns whose header carries none (deg, rad)");
+  r.text("gait.measured.length_unit", c.measured_length_unit,
+    "unit of length columns whose header carries none (mm, m, cm, in)");
+  r.strings("gait.measured.channels", c.measured_channels,
+    "\"target = expression\": weighted column sums driving rig channels (flexion_deg, axial_force_N, ...)");
+  r.strings("gait.measured.compare", c.measured_compare,
+    "measured outputs compared by kneesim diagnose forces (e.g. medial_force_N)");
+  r.number("gait.ap_force_shift_pct", c.ap_force_shift_pct, -50, 50,
+    "delay of the AP force waveform, % of the cycle");
+  r.number("gait.ie_torque_shift_pct", c.ie_torque_shift_pct, -50, 50,
+    "delay of the IE torque waveform, % of the cycle");
 
-  r.choice("insert", c.insert_kind, {"rigid", "deformable"});
-  r.number("deformable.element_size_mm", c.deformable_element_size_mm, 0.2, 10.0);
-  r.integer("deformable.layers", c.deformable_layers, 1, 20);
-  r.number("deformable.grading", c.deformable_grading, 0.05, 20.0);
-  r.number("deformable.dt_us", c.deformable_dt_us, 0.0, 1000.0);
-  r.number("deformable.damping_per_s", c.deformable_damping_per_s, 0.0, 1e5);
-  r.choice("deformable.material", c.deformable_material, {"elastoplastic", "elastic"});
-  r.number("deformable.hardening_MPa", c.deformable_hardening_MPa, 0.0, 1e5);
-  r.number("deformable.yield_cap_MPa", c.deformable_yield_cap_MPa, 0.0, 1e4);
+  r.choice("insert", c.insert_kind, {"rigid", "deformable"},
+    "rigid insert with elastic-foundation contact, or deformable hex8 solid");
+  r.number("deformable.element_size_mm", c.deformable_element_size_mm, 0.2, 10.0,
+    "deformable insert: grid spacing over the footprint");
+  r.integer("deformable.layers", c.deformable_layers, 1, 20,
+    "deformable insert: elements through the thickness");
+  r.number("deformable.grading", c.deformable_grading, 0.05, 20.0,
+    "deformable insert: top / bottom layer thickness ratio");
+  r.number("deformable.dt_us", c.deformable_dt_us, 0.0, 1000.0,
+    "deformable insert: time step reached by mass scaling (0: none)");
+  r.number("deformable.damping_per_s", c.deformable_damping_per_s, 0.0, 1e5,
+    "deformable insert: mass-proportional damping");
+  r.choice("deformable.material", c.deformable_material, {"elastoplastic", "elastic"},
+    "deformable insert: J2 elastoplastic or linear elastic");
+  r.number("deformable.hardening_MPa", c.deformable_hardening_MPa, 0.0, 1e5,
+    "deformable insert: isotropic hardening slope");
+  r.number("deformable.yield_cap_MPa", c.deformable_yield_cap_MPa, 0.0, 1e4,
+    "deformable insert: yield stress ceiling");
 
-  r.choice("solver.integrator", c.integrator, {"central_difference", "cvode"});
-  r.number("solver.dt_safety", c.dt_safety, 0.05, 1.0);
-  r.integer("solver.threads", c.threads, 1, 256);
-  r.integer("solver.cycles", c.cycles, 1, 1000000);
+  r.choice("solver.integrator", c.integrator, {"central_difference", "cvode"},
+    "explicit central difference, or SUNDIALS CVODE as a reference");
+  r.number("solver.dt_safety", c.dt_safety, 0.05, 1.0,
+    "time step as a fraction of the estimated stability limit");
+  r.integer("solver.threads", c.threads, 1, 256,
+    "OpenMP threads of one run");
+  r.integer("solver.cycles", c.cycles, 1, 1000000,
+    "gait cycles of kneesim run; outputs come from the last");
 
-  r.list("output.map_pcts", c.map_pcts, 0, 100);
-  r.text("output.measured_kinematics", c.measured_kinematics);
+  r.list("output.map_pcts", c.map_pcts, 0, 100,
+    "gait percentages of the pressure maps (.vtp)");
+  r.text("output.measured_kinematics", c.measured_kinematics,
+    "measured kinematics drawn over the kinematics plot (CSV or .sto)");
   return r;
 }
 
@@ -453,6 +598,28 @@ std::optional<NumberKey> find_number_key(const Config& config, const std::string
   const Field* f = registry.find(key);
   if (!f || !f->number) return std::nullopt;
   return NumberKey{*f->number, f->lo, f->hi};
+}
+
+std::vector<KeyReference> config_reference() {
+  const std::vector<std::string> presets = {"stanmore", "materials_study", "iso", "displacement"};
+  std::vector<Config> configs(presets.size());
+  std::vector<Registry> registries;
+  for (size_t p = 0; p < presets.size(); ++p) {
+    configs[p].rig_preset = presets[p];
+    apply_rig_preset(configs[p]);
+    configs[p].material = find_material(configs[p], configs[p].material.name);
+    registries.push_back(make_registry(configs[p]));
+  }
+  std::vector<KeyReference> out;
+  for (const auto& [key, field] : registries[0].fields()) {
+    KeyReference r{key, field.type, field.allowed, field.meaning, field.show(), {}};
+    for (size_t p = 1; p < presets.size(); ++p) {
+      const std::string v = registries[p].find(key)->show();
+      if (v != r.default_value) r.preset_defaults.emplace_back(presets[p], v);
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
 }
 
 Config load_config(const std::filesystem::path& file, const std::vector<Override>& overrides) {

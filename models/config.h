@@ -174,6 +174,18 @@ struct NumberKey {
 };
 std::optional<NumberKey> find_number_key(const Config& config, const std::string& key);
 
+// one registered key as the configuration reference lists it (kneesim config --reference,
+// docs/config-reference.md): generated from the registry that loads configs, so it cannot drift
+struct KeyReference {
+  std::string key;            // dotted, e.g. "contact.law"
+  std::string type;           // number, integer, sign, text, choice, boolean, list ...
+  std::string allowed;        // the allowed values, as the error message states them
+  std::string meaning;        // one line
+  std::string default_value;  // TOML syntax, under the default rig preset (stanmore)
+  std::vector<std::pair<std::string, std::string>> preset_defaults;  // presets that differ
+};
+std::vector<KeyReference> config_reference();
+
 // ${KNEESIM_DATA} and ${KNEESIM_SOURCE} expansion, relative paths resolved against the config
 std::filesystem::path resolve_path(const Config& config, const std::string& path);
 

@@ -37,5 +37,6 @@ void add_bor_command(CLI::App& app);
 void add_diagnose_command(CLI::App& app);
 void add_study_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
+void add_config_command(CLI::App& app);
 
 }  // namespace kneesim::cli

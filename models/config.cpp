@@ -12,6 +12,7 @@
 #include <variant>
 
 #include "engine/errors.h"
+#include "engine/io/source_tree.h"
 #include "engine/io/toml_file.h"
 
 namespace kneesim::models {
@@ -483,7 +484,7 @@ void apply_rig_preset(Config& c) {
 }
 
 std::string materials_library_path() {
-  return std::string(KNEESIM_SOURCE_DIR) + "/models/materials.toml";
+  return (io::source_dir() / "models/materials.toml").string();
 }
 
 // materials are tables of their own: "<section>.<name>.<key>" entries, removed from `flat`
@@ -585,8 +586,8 @@ std::filesystem::path resolve_path(const Config& config, const std::string& path
       p.replace(pos, token.size(), env ? env : fallback);
     }
   };
-  expand("KNEESIM_DATA", std::string(KNEESIM_SOURCE_DIR) + "/../shared/data");
-  expand("KNEESIM_SOURCE", KNEESIM_SOURCE_DIR);
+  expand("KNEESIM_DATA", (io::source_dir() / "../shared/data").string());
+  expand("KNEESIM_SOURCE", io::source_dir().string());
   std::filesystem::path out(p);
   if (out.is_relative() && !config.file.empty()) out = config.file.parent_path() / out;
   return out;

@@ -12,15 +12,12 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "engine/io/source_tree.h"
+
 namespace kneesim::io {
 namespace {
 
 const char* const kPython = "/usr/bin/python3";
-
-std::string plots_dir() {
-  if (const char* env = std::getenv("KNEESIM_PLOTS_DIR")) return env;
-  return KNEESIM_PLOTS_DIR;
-}
 
 void warn_failed(const std::string& script) {
   std::fprintf(stderr, "warning: plot script %s failed; the CSV and JSON results are complete\n",
@@ -80,7 +77,7 @@ bool send_all(int fd, const std::string& text) {
 }  // namespace
 
 bool run_plot(const std::string& script, const std::vector<std::string>& args) {
-  const std::string path = plots_dir() + "/" + script;
+  const std::string path = (plots_dir() / script).string();
   if (!std::filesystem::exists(kPython)) {
     std::fprintf(stderr, "warning: %s not found, skipped plot %s\n", kPython, script.c_str());
     return false;
@@ -110,7 +107,7 @@ PlotSession::PlotSession() {
   if (!std::filesystem::exists(kPython)) return;  // run_plot warns per plot
   int sv[2];
   if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0) return;
-  const pid_t pid = spawn_python({plots_dir() + "/plot_server.py"}, sv[1]);
+  const pid_t pid = spawn_python({(plots_dir() / "plot_server.py").string()}, sv[1]);
   ::close(sv[1]);
   if (pid < 0) {
     ::close(sv[0]);

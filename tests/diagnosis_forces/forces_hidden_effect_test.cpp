@@ -17,6 +17,7 @@
 #include <random>
 #include <sstream>
 
+#include "engine/io/source_tree.h"
 #include "analysis/diagnosis/forces_diagnosis.h"
 #include "loads/iso14243/waveform.h"
 #include "models/config.h"
@@ -37,7 +38,7 @@ constexpr double kEnd = 2.25;        // end of the record [s]
 // the synthetic table: time_s, total_N, flexion_deg, medial_N (the medial column filled with
 // the baseline's share of 0.6 here; the tests replace it)
 std::string loads_table() {
-  const auto w = loads::load_waveform(std::string(KNEESIM_SOURCE_DIR) +
+  const auto w = loads::load_waveform(kneesim::io::source_dir().string() +
                                        "/loads/iso14243/iso14243_1_approx.csv");
   const int ax = w.channel("axial_force_N"), fe = w.channel("flexion_deg");
   std::ostringstream o;

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "engine/io/source_tree.h"
 #include "engine/simulate.h"
 #include "engine_fixtures.h"
 
@@ -20,9 +21,9 @@ namespace {
 // the example config, or "" when the data folder is absent
 fs::path dm_config() {
   const char* data = std::getenv("KNEESIM_DATA");
-  const fs::path dir = data ? fs::path(data) : fs::path(KNEESIM_SOURCE_DIR) / "../shared/data";
+  const fs::path dir = data ? fs::path(data) : kneesim::io::source_dir() / "../shared/data";
   if (!fs::exists(dir / "gc6_dm" / "femoral_component.stl")) return {};
-  return fs::path(KNEESIM_SOURCE_DIR) / "models/examples/dm_stanmore.toml";
+  return kneesim::io::source_dir() / "models/examples/dm_stanmore.toml";
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "engine/io/source_tree.h"
 #include "engine/io/plot.h"
 
 namespace {
@@ -32,8 +33,8 @@ TEST_CASE("a plot session runs its scripts in order, each as a fresh interpreter
   const fs::path dir = fs::temp_directory_path() / "kneesim_plot_session_test";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  fs::copy_file(fs::path(KNEESIM_PLOTS_DIR) / "plot_server.py", dir / "plot_server.py");
-  fs::copy_file(fs::path(KNEESIM_PLOTS_DIR) / "plotio.py", dir / "plotio.py");
+  fs::copy_file((kneesim::io::source_dir() / "tools/plots") / "plot_server.py", dir / "plot_server.py");
+  fs::copy_file((kneesim::io::source_dir() / "tools/plots") / "plotio.py", dir / "plotio.py");
   // writes its arguments, whether the previous script's file exists, and a matplotlib setting
   // that the previous script changed
   write(dir / "ok.py",

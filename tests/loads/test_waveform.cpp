@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <numbers>
 
+#include "engine/io/source_tree.h"
 #include "engine/errors.h"
 #include "loads/iso14243/conventions.h"
 #include "loads/iso14243/text_table.h"
@@ -24,7 +25,7 @@ namespace {
 
 std::filesystem::path source_dir() {
   const char* s = std::getenv("KNEESIM_SOURCE_DIR");
-  return s ? std::filesystem::path(s) : std::filesystem::path(KNEESIM_TEST_SOURCE_DIR);
+  return s ? std::filesystem::path(s) : kneesim::io::source_dir();
 }
 
 Waveform shipped(const char* name) {

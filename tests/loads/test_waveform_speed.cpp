@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <new>
 
+#include "engine/io/source_tree.h"
 #include "loads/iso14243/waveform.h"
 
 namespace {
@@ -23,7 +24,7 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 TEST_CASE("value and derivative do not allocate") {
   const char* src = std::getenv("KNEESIM_SOURCE_DIR");
-  const std::filesystem::path dir = src ? src : KNEESIM_TEST_SOURCE_DIR;
+  const std::filesystem::path dir = src ? std::filesystem::path(src) : kneesim::io::source_dir();
   const auto w = kneesim::loads::load_waveform(dir / "loads/iso14243/iso14243_1_approx.csv");
   const int n = 1000000;
   double sum = 0.0;

@@ -8,13 +8,14 @@
 #include <set>
 #include <sstream>
 
+#include "engine/io/source_tree.h"
 #include "models/config.h"
 #include "models/config_reference.h"
 
 using namespace kneesim::models;
 
 TEST_CASE("docs/config-reference.md equals the build's configuration reference") {
-  const std::string path = std::string(KNEESIM_SOURCE_DIR) + "/docs/config-reference.md";
+  const std::string path = (kneesim::io::source_dir() / "docs/config-reference.md").string();
   std::ifstream in(path);
   REQUIRE_MESSAGE(in.good(), path << " is missing");
   std::stringstream text;

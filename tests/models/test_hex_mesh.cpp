@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "engine/io/source_tree.h"
 #include "engine/errors.h"
 #include "engine/solid/solid_build.h"
 #include "models/generic_tkr.h"
@@ -105,7 +106,7 @@ TEST_CASE("generic insert hex mesh follows the height field, keeps the volume, g
 
 TEST_CASE("Grand Challenge DM and JW inserts mesh without inverted elements") {
   const char* data = std::getenv("KNEESIM_DATA");
-  const fs::path dir = data ? fs::path(data) : fs::path(KNEESIM_SOURCE_DIR) / "../shared/data";
+  const fs::path dir = data ? fs::path(data) : kneesim::io::source_dir() / "../shared/data";
   for (const std::string name : {"gc6_dm", "gc4_jw"}) {
     CAPTURE(name);
     const fs::path file = dir / name / "tibial_insert.stl";

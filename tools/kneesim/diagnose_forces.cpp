@@ -1,3 +1,4 @@
+#include "engine/io/source_tree.h"
 #include "tools/kneesim/diagnose_forces.h"
 
 #include <cstdio>
@@ -29,7 +30,7 @@ void run_diagnose_forces(DiagnoseForcesOptions o) {
 void add_diagnose_forces(CLI::App* diagnose) {
   auto opt = std::make_shared<DiagnoseForcesOptions>();
   opt->common.out = "kneesim-diagnose-forces";
-  opt->run.config = std::string(KNEESIM_SOURCE_DIR) + "/models/examples/jw_measured_loads.toml";
+  opt->run.config = (kneesim::io::source_dir() / "models/examples/jw_measured_loads.toml").string();
   CLI::App* cmd = diagnose->add_subcommand(
       "forces", "medial and lateral compartment forces of an instrumented knee (e.g. the Grand "
                 "Challenge JW tray) against the rig driven by the same measured loads; the "

@@ -32,8 +32,8 @@
 // mass-scaled to the default 20 us step the insert weighs 27 kg (2 mm elements) against the
 // tray's 2 kg, and the base reaction drove a friction-excited oscillation of the tibial
 // carriage's ML and VV DOFs at about 455 Hz (75 mm/s and 36 um RMS in ML) that added
-// 37 % to the sliding work and the wear volume of the default run (docs/deformable.md, "Wear
-// on the deformable insert"; tools/bench/wear_sliding.cpp measures it).
+// 37 % to the sliding work and the wear volume of the default run (CHANGELOG.md, the
+// tray-coupling fix; tools/bench/wear_sliding.cpp measures it).
 #pragma once
 
 #include "engine/data.h"

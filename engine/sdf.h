@@ -8,7 +8,7 @@
 // (Baerentzen & Aanaes 2005), so open articular-surface meshes work too: their back side is
 // "inside" within the band.
 //
-// Storage is bricked (docs/performance.md): the node grid is cut into bricks of 8^3 nodes that
+// Storage is bricked (CHANGELOG.md, performance round 1): the node grid is cut into bricks of 8^3 nodes that
 // overlap by one node, so each brick covers 7^3 cells and the 8 corners of any cell lie in one
 // 2 KB brick. Only bricks that hold a value other than the clamp value are stored; the rest are
 // uniform (+band or -band) and read one of two shared clamp bricks (4 KB, always in cache), so
@@ -119,7 +119,7 @@ void make_brick_axes(const SignedDistanceField& field, SignedDistanceField::Stor
   // x and y in the two lanes of one register: the bounds, the truncation, the fractions and
   // the x and y interpolations take one packed instruction for two scalar ones. Each lane does
   // the scalar code's operations in its order (no FMA on the baseline target), so the result
-  // is the scalar code's, bit for bit (docs/performance.md, round 3).
+  // is the scalar code's, bit for bit (CHANGELOG.md, performance round 3).
   const __m128d gxy = _mm_set_pd(g.y(), g.x());
   const double gz = g.z();
   // outside the grid's cells (or NaN): +band

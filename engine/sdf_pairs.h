@@ -1,5 +1,5 @@
 // Two points' field samples at once, for the contact kernel's batched distance pass
-// (engine/contact.cpp, docs/performance.md round 4): the affine map of two insert points into a
+// (engine/contact.cpp; CHANGELOG.md, performance round 4): the affine map of two insert points into a
 // field's grid and their trilinear samples with one SSE2 register per quantity, lane l holding
 // point l. Each lane performs, in the same order, the operations of the scalar path it
 // replaces - Eigen's A p + b of GridMap (rows x and y as ((a0 x + a1 y) + a2 z) + b, row z as

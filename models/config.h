@@ -59,7 +59,7 @@ struct Config {
   double sdf_band_mm = 1.5;                // exact band of the field [mm]
   // eps of the regularized Coulomb law [mm/s]: its viscous slope mu N / eps near zero slip
   // must stay inside the explicit stability limit; 5 mm/s keeps 99 % of full friction at the
-  // ~40 mm/s of stance sliding and matches the CVODE reference (README, benchmark)
+  // ~40 mm/s of stance sliding and matches the CVODE reference (docs/validation.md, bench_engine)
   double friction_regularization_mm_per_s = 5.0;
   double runaway_fraction = 0.5;           // max penetration / layer thickness [-]
   double friction_override = -1.0;         // >= 0 replaces the material's friction [-]

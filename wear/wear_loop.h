@@ -56,7 +56,7 @@ struct UpdateRecord {
 
 // the enclosed-volume loss and the depth integral of a closed insert differ by this fraction
 // at most in a sound run; beyond it the geometry update has gone wrong and the run is not
-// complete. They agree within 1 % for the default run (README); deep scars on curved
+// complete. They agree within 1 % for the default run (docs/validation.md); deep scars on curved
 // surfaces differ by a few per cent (a curved surface receding along its normals changes its
 // area; tests/wear/deep_wear_test.cpp reaches 2.5 %), so the bound is 10 %.
 inline constexpr double kVolumeBookkeepingTolerance = 0.10;

@@ -45,7 +45,7 @@ ForcesMeasured read_forces_measured(const models::Config& config, const std::str
 struct ForcesCaseOptions {
   int grid_points = 9;   // full simulations per candidate and cycle across its bounds [-]
   // friction is not a default candidate: each candidate costs a grid of simulations, and on
-  // the JW rig friction 0-0.2 moves the medial force by at most 26 N RMS (docs/forces.md)
+  // the JW rig friction 0-0.2 moves the medial force by at most 26 N RMS (docs/diagnosis.md, forces case)
   std::vector<Effect> candidates = {Effect::load_line, Effect::vv_moment, Effect::vv_alignment};
 };
 

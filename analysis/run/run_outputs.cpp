@@ -125,7 +125,7 @@ nlohmann::json describe_figures(const CycleFigures& f) {
   j["ap_rom_mm"] = f.ap_rom_mm;
   j["ie_rom_deg"] = f.ie_rom_deg;
   // deprecated alias of ie_rom_deg under the first release's misnamed key (degrees, not mm);
-  // written in this release only, for scripts that read it (README)
+  // written in this release only, for scripts that read it (docs/user-guide.md)
   j["ie_rom_mm"] = f.ie_rom_deg;
   j["peak_pressure_MPa"] = f.peak_pressure_MPa;
   j["mean_peak_pressure_MPa"] = f.mean_peak_pressure_MPa;

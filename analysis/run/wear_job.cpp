@@ -384,7 +384,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
   summary["final_ap_rom_mm"] = last.ap_rom * 1e3;
   summary["final_ie_rom_deg"] = last.ie_rom * 180.0 / std::numbers::pi;
   // deprecated aliases under the first release's misnamed keys (degrees, not mm); written in
-  // this release only, for scripts that read them (README)
+  // this release only, for scripts that read them (docs/user-guide.md)
   summary["ie_rom_mm"] = summary["ie_rom_deg"];
   summary["final_ie_rom_mm"] = summary["final_ie_rom_deg"];
   if (solid) {

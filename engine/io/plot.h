@@ -6,7 +6,7 @@
 // (tools/plots/plot_server.py) starts at once and imports matplotlib on the other core while
 // the simulation runs, then runs every plot of the command in the order asked, while the
 // caller goes on. Importing matplotlib is about 0.8 s of CPU of a ~1.3 s plot; `kneesim
-// compare` made four plots with four interpreters (docs/performance.md).
+// compare` made four plots with four interpreters (CHANGELOG.md, performance round 3).
 #pragma once
 
 #include <string>

@@ -11,7 +11,7 @@ namespace {
 
 // v as printf's "%.9g" writes it (std::to_chars with a precision is specified as printf's
 // conversion, C locale), about five times cheaper than snprintf: a wear run's 21 depth maps
-// and a run's pressure maps spent more time formatting than a gait cycle (docs/performance.md)
+// and a run's pressure maps spent more time formatting than a gait cycle (CHANGELOG.md, performance round 3)
 void append_g9(std::string& out, double v, char after) {
   char buf[40];
   char* end = std::to_chars(buf, buf + sizeof buf - 1, v, std::chars_format::general, 9).ptr;

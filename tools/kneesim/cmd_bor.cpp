@@ -181,9 +181,9 @@ void run_bor(const BorOptions& o) {
 void add_bor_command(CLI::App& app) {
   auto opt = std::make_shared<BorOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "bor", "Block-on-ring wear model, semi-analytic or FE (Hussin 2024 rig; physics.md section 7)");
+      "bor", "Block-on-ring wear model, semi-analytic or FE (Hussin 2024 rig; docs/theory.md)");
   cmd->add_option("--model", opt->model,
-                  "analytic (Winkler block, physics.md section 7) or fe (rigid ring on the "
+                  "analytic (Winkler block, docs/theory.md) or fe (rigid ring on the "
                   "deformable hex8 block, Archard only; docs/deformable.md)")
       ->capture_default_str();
   cmd->add_option("--update-every", opt->update_every,

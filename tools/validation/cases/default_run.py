@@ -1,0 +1,25 @@
+"""The default run against its equilibrium and the rig's intent, and Pal 2008's ranges."""
+TITLE = "Default run: ranges of motion, force balance, medial share, pressures"
+LONG = False
+
+
+def run(v):
+    s = v.json(v.kneesim("run", ["run", "--no-plots", "--quiet"]), "summary.json")
+    v.figure("ap_rom_mm", s["ap_rom_mm"], "mm")
+    v.figure("ie_rom_deg", s["ie_rom_deg"], "deg")
+    v.figure("peak_axial_load_N", s["peak_axial_load_N"], "N")
+    v.figure("contact_axial_force_N", s["contact_axial_force_at_peak_load_N"], "N")
+    v.figure("force_balance_pct", 100 * (s["contact_axial_force_at_peak_load_N"] / s["peak_axial_load_N"] - 1), "%")
+    v.figure("medial_share_pct", 100 * s["medial_fraction_stance"], "%")
+    v.figure("mean_peak_pressure_MPa", s["mean_peak_pressure_MPa"], "MPa")
+    v.figure("peak_pressure_MPa", s["peak_pressure_MPa"], "MPa")
+
+
+TABLE = """
+| quantity | reference | kneesim | summary.json key |
+|---|---|---|---|
+| AP / IE range of motion (joint coordinates) | Pal 2008 (NexGen CR, 1000-trial MC): 9.68 [7.59, 12.34] mm / 10.11 [7.66, 13.85] deg | {ap_rom_mm:.2f} mm / {ie_rom_deg:.2f} deg | `ap_rom_mm`, `ie_rom_deg` |
+| axial contact force at the peak load vs the applied axial force | {peak_axial_load_N:.1f} N (equilibrium) | {contact_axial_force_N:.1f} N ({force_balance_pct:+.2f} %) | `contact_axial_force_at_peak_load_N`, `peak_axial_load_N` |
+| medial share of the contact force over stance (0-60 %) | about 60 % (5 mm medial IE/VV axis, the rig's intent) | {medial_share_pct:.1f} % | `medial_fraction_stance` |
+| mean peak pressure / peak pressure | Pal 2008: peak 25.71 [23.94, 27.67] MPa | {mean_peak_pressure_MPa:.1f} / {peak_pressure_MPa:.1f} MPa (rigid elastic foundation: over-predicts, [contact](#contact)) | `mean_peak_pressure_MPa`, `peak_pressure_MPa` |
+"""

@@ -71,6 +71,17 @@ class Context:
         self._call(cmd, name)
         return folder
 
+    def kneesim_status(self, args):
+        """Runs `build/tools/kneesim ARGS` as given (no --out added) in the case's folder and
+        returns (exit code, stdout, stderr) whatever the exit code: for cases about refusals."""
+        cmd = [os.path.join(self.build, "tools", "kneesim")] + list(args)
+        self._record(("kneesim " + " ".join(shlex.quote(a) for a in args)).replace(SOURCE + "/", ""))
+        env = dict(os.environ)
+        env.setdefault("KNEESIM_DATA", self.data)
+        p = subprocess.run(cmd, cwd=self.dir, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                           text=True)
+        return p.returncode, p.stdout, p.stderr
+
     def tool(self, name, args, record=None):
         """Runs another program of the build (e.g. tools/bench_engine) and returns its stdout."""
         exe = os.path.join(self.build, name)
@@ -109,6 +120,9 @@ class Context:
             for r in csv.DictReader(line for line in f if not line.startswith("#")):
                 rows.append({k: _num(v) for k, v in r.items()})
         return rows
+
+    def skip(self, reason):
+        return Skip(reason)
 
     def require_data(self, sub):
         path = os.path.join(self.data, sub)
@@ -176,9 +190,11 @@ def fields(template):
     return list(string.Formatter().parse(template))
 
 
-def footer(case, commands):
+def footer(mod, commands):
+    if not getattr(mod, "FOOTER_COMMANDS", True):
+        return f"\n(Regenerate: `tools/scripts/validate.sh {mod.NAME}`; the commands are in the table.)\n"
     cmds = "; ".join(f"`{c}`" for c in commands)
-    return f"\n(Regenerate: `tools/scripts/validate.sh {case}`; it runs {cmds}.)\n"
+    return f"\n(Regenerate: `tools/scripts/validate.sh {mod.NAME}`; it runs {cmds}.)\n"
 
 
 def render(mod, table_name, figures, commands):
@@ -192,7 +208,7 @@ def render(mod, table_name, figures, commands):
             raise CaseError(f"case {mod.NAME}: the table uses '{field}', which run() did not write")
         v = values[field]
         out.append(format(v, spec) if spec and not isinstance(v, str) else str(v))
-    return "".join(out) + "\n" + footer(mod.NAME, commands)
+    return "".join(out) + "\n" + footer(mod, commands)
 
 
 def template_regex(mod, table_name, commands):
@@ -203,9 +219,9 @@ def template_regex(mod, table_name, commands):
             if spec and spec.endswith("%"):
                 parts.append(NUMBER + "%")
             else:
-                parts.append(NUMBER if (spec and spec[-1:] in "eEfFgGd") else r"(.+?)")
+                parts.append(NUMBER if (spec and spec[-1:] in "eEfFgGd") else r"(.*?)")
             names.append((field, spec))
-    text = "".join(parts) + re.escape("\n" + footer(mod.NAME, commands))
+    text = "".join(parts) + re.escape("\n" + footer(mod, commands))
     return re.compile("^" + text + "$", re.S), names
 
 
@@ -274,7 +290,11 @@ def run_case(mod, args):
     os.makedirs(out_dir, exist_ok=True)
     v = Context(mod.NAME, args.build, out_dir, args.quiet)
     t0 = time.time()
-    mod.run(v)
+    cwd = os.getcwd()
+    try:
+        mod.run(v)
+    finally:
+        os.chdir(cwd)
     result = {
         "case": mod.NAME,
         "title": getattr(mod, "TITLE", mod.NAME),
@@ -348,6 +368,8 @@ def main():
     ap.add_argument("--long-only", action="store_true", help="run only the cases marked long")
     ap.add_argument("--from-json", action="store_true",
                     help="do not run: use build/validation/<case>.json from an earlier run")
+    ap.add_argument("--json-only", action="store_true",
+                    help="run and write build/validation/<case>.json, but leave the docs alone")
     ap.add_argument("--list", action="store_true", help="list the cases and exit")
     ap.add_argument("--build", default=os.path.join(SOURCE, "build"), help="build folder (default: build)")
     ap.add_argument("--quiet", action="store_true", help="print only results")
@@ -393,7 +415,7 @@ def main():
                 for p in compare(mod, name, documented, result["figures"], result["commands"]):
                     problems.append(f"{os.path.relpath(path, SOURCE)}: {p}")
                     print(f"  MISMATCH {os.path.relpath(path, SOURCE)}: {p}")
-        else:
+        elif not args.json_only:
             for path, name in rewrite_blocks(mod, result):
                 print(f"  wrote {os.path.relpath(path, SOURCE)} block validate:{mod.NAME}{'/' + name if name else ''}")
     print(f"validate: {len(mods) - len(failed) - len(skipped)} case(s) run, {len(skipped)} skipped"

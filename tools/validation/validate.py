@@ -24,6 +24,7 @@ import math
 import os
 import re
 import shlex
+import shutil
 import string
 import subprocess
 import sys
@@ -418,6 +419,13 @@ def main():
         elif not args.json_only:
             for path, name in rewrite_blocks(mod, result):
                 print(f"  wrote {os.path.relpath(path, SOURCE)} block validate:{mod.NAME}{'/' + name if name else ''}")
+            for dst, src in getattr(mod, "IMAGES", {}).items():
+                src_path = os.path.join(args.build, "validation", mod.NAME, src)
+                if os.path.exists(src_path):
+                    shutil.copyfile(src_path, os.path.join(SOURCE, dst))
+                    print(f"  copied {dst}")
+                else:
+                    print(f"  note: no {src_path} to copy to {dst}")
     print(f"validate: {len(mods) - len(failed) - len(skipped)} case(s) run, {len(skipped)} skipped"
           f"{' (' + ', '.join(skipped) + ')' if skipped else ''}, {len(failed)} failed"
           f"{' (' + ', '.join(failed) + ')' if failed else ''}"

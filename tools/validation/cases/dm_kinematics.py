@@ -2,6 +2,7 @@
 against the force-controlled stanmore rig driven by the measured flexion."""
 TITLE = "Diagnosis of the DM in-vivo kinematics against the rig"
 LONG = True  # 250 rig simulations: 1-5 minutes
+IMAGES = {"docs/img/diagnosis_kinematics_dm.png": "dm/diagnosis.png"}
 
 
 def run(v):

@@ -2,6 +2,7 @@
 of the paper's error sign (analysis/diagnosis/data)."""
 TITLE = "Diagnosis of the Hussin 2024 block-on-ring data"
 LONG = False
+IMAGES = {"docs/img/diagnosis_bor_hussin2024.png": "hussin_primary/diagnosis.png"}
 
 FILES = {"primary": "analysis/diagnosis/data/hussin2024_bor.csv",
          "alt": "analysis/diagnosis/data/hussin2024_bor_underprediction.csv"}

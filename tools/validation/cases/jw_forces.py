@@ -2,6 +2,7 @@
 against the stanmore rig driven by the same measured loads (two cycles, each held out)."""
 TITLE = "Diagnosis of the JW in-vivo compartment forces against the rig"
 LONG = True  # 56 rig simulations of 2 cycles: 1-3 minutes
+IMAGES = {"docs/img/forces_jw_diagnosis.png": "jw/diagnosis.png"}
 
 
 def find(d, key):

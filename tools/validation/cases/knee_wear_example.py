@@ -4,6 +4,7 @@ k = 2.643e-10 mm3/(N mm), 5 % specimen scatter and noise 0.2 mm3 + 2 %): the dia
 cross_shear and recover g."""
 TITLE = "Knee-wear diagnosis of synthetic cross-shear data"
 LONG = False
+IMAGES = {"docs/img/diagnosis_knee_wear_synthetic_cross_shear.png": "kw_three/diagnosis.png"}
 
 RUNS = [("three", "tests/diagnosis_knee/knee_wear_example.csv", []),
         ("two", "tests/diagnosis_knee/knee_wear_example_two_conditions.csv", ["--set", "implant.edge_length_mm=1"])]

@@ -83,18 +83,20 @@ class Context:
                            text=True)
         return p.returncode, p.stdout, p.stderr
 
-    def tool(self, name, args, record=None):
-        """Runs another program of the build (e.g. tools/bench_engine) and returns its stdout."""
+    def tool(self, name, args, record=None, env=None):
+        """Runs another program of the build (e.g. tools/bench_engine) and returns its stdout;
+        `env` adds environment variables."""
         exe = os.path.join(self.build, name)
         self._record(record or (name + " " + " ".join(shlex.quote(a) for a in args)).strip())
-        return self._call([exe] + list(args), os.path.basename(name))
+        return self._call([exe] + list(args), os.path.basename(name), env)
 
     def _record(self, text):
         if text not in self.commands:
             self.commands.append(text)
 
-    def _call(self, cmd, name):
+    def _call(self, cmd, name, extra_env=None):
         env = dict(os.environ)
+        env.update(extra_env or {})
         env.setdefault("KNEESIM_DATA", self.data)
         env.setdefault("OMP_WAIT_POLICY", "passive")
         t0 = time.time()

@@ -32,10 +32,23 @@
 // training rows), or a case's own where its inputs carry most of the answer (forces). Every
 // report gives the gain against it, and a candidate must beat it by the same held-out margin
 // as it beats "none": a gain that a flat line achieves is not a finding.
+//
+// Error model (error_model.h, DiagnosisOptions::noise_model): every fit, the baseline's and
+// the trivial predictor's included, carries the case's error model: correlated residuals
+// (Ornstein-Uhlenbeck along each series, correlation length profiled), specimen random
+// effects (wear factor and soak-control offset), and the instrument's nuisance terms (profiled
+// by least squares, free or with a prior), which are fitted on the training rows and applied
+// to the held-out rows like the model itself (they describe the record, not the model). AICc
+// uses the exact Gaussian likelihood of that model and an effective sample size for its
+// small-sample term. "white" is the independent-residual model of the previous version.
+//
+// Detection limits (detection.h): for every candidate, the smallest effect the data could have
+// named at their fitted noise, by simulation with the fitted error model.
 #pragma once
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -50,6 +63,43 @@ struct DiagnosisOptions {
   double heldout_threshold = 0.05;  // required relative held-out RMSE drop against "none" [-]
   bool multi_start = true;          // multi-start the full-data fits
   bool trivial_gate = true;         // also require the held-out drop against the trivial predictor
+  std::string noise_model = "instrument";     // error model: white, correlated, instrument
+  std::map<std::string, double> noise_params; // error-model keys (priors, switches)
+  int detection_replicates = 0;     // replicates per candidate of the detection limits, 0: none
+  double detection_rate = 0.8;      // fraction of replicates that must name the effect [-]
+};
+
+// the profiled error model of one fit
+struct NoiseFit {
+  double sigma = 0.0;       // sd of the whitened, weighted residuals [rmse_unit]
+  double ell = 0.0;         // Ornstein-Uhlenbeck correlation length [series unit]; 0: white
+  double rho = 0.0;         // specimen wear-factor variance / sigma^2 (weighted units) [-]
+  double rho_offset = 0.0;  // specimen offset variance / sigma^2 (weighted units) [-]
+  double n_eff = 0.0;       // effective sample size of AICc's small-sample term [-]
+  int parameters = 0;       // error-model parameters counted in AICc [-]
+};
+
+// the smallest effect of one candidate the data could have named: along one size parameter
+// (the others at their null or initial values), by simulation with the fitted error model
+struct DetectionLimit {
+  Effect effect = Effect::none;
+  std::string param;          // the size parameter
+  double null_value = 0.0;    // its value without the effect [param unit]
+  int direction = 1;          // +1 above the null value, -1 below
+  bool reached = false;       // named in the required fraction within the searched range
+  double value = 0.0;         // parameter value at the limit, or the searched bound [param unit]
+  double signal_rms = 0.0;    // RMS of the effect's identifiable signal there [rmse_unit]
+  double ratio = 0.0;         // signal_rms / the fitted noise RMS [-]
+  int replicates = 0;         // simulated data sets [-]
+};
+
+struct DetectionResult {
+  std::string method;              // "refits of the forward model" or "local linear model"
+  double noise_rms = 0.0;          // RMS of the fitted error model [rmse_unit]
+  double rate = 0.8;               // required naming fraction [-]
+  int replicates = 0;              // per limit [-]
+  std::vector<DetectionLimit> limits;
+  double seconds = 0.0;            // [s]
 };
 
 struct ModelFit {
@@ -65,6 +115,11 @@ struct ModelFit {
   double heldout_rmse = 0.0;           // held-out [rmse_unit]
   double aicc = 0.0;                   // corrected Akaike information criterion [-]
   std::vector<double> noise_sd;        // profiled noise sd per quantity [quantity unit]
+  NoiseFit noise;                      // the profiled error model
+  std::vector<std::string> nuisance_names;  // the instrument's nuisance terms
+  Eigen::VectorXd nuisance;            // their fitted values [term units]
+  Eigen::VectorXd nuisance_contribution;  // their sum at every row, part of predictions
+                                          // [quantity unit]
   std::vector<int> at_bound;           // indices into specs of parameters at a search bound
   bool passes_gates = false;           // AICc and held-out gates against none passed
   bool beats_trivial = true;           // held-out gate against the trivial predictor passed
@@ -74,6 +129,10 @@ struct DiagnosisResult {
   std::string rmse_unit;            // quantity whose unit the RMSEs carry, e.g. "volume_mm3"
   std::vector<std::string> quantities;  // measured quantities, first = rmse_unit
   NoiseModel noise_model = NoiseModel::per_quantity;  // the residual model used
+  ErrorModel error_model;           // the error model used (error_model.h)
+  std::string series_unit;          // unit of the correlation length
+  bool specimens = false;           // specimen random effects fitted
+  DetectionResult detection;        // detection limits (empty unless requested)
   Eigen::VectorXd weights;          // unit conversion into rmse_unit per measurement [-]
   ModelFit baseline;                // practitioner's calibration, not refitted
   ModelFit trivial;                 // the measured mean of each quantity, or the case's own
@@ -92,8 +151,23 @@ struct DiagnosisResult {
 std::vector<int> find_params_at_bound(const std::vector<ParamSpec>& specs,
                                       const Eigen::VectorXd& params);
 
+// the selection gates: the AICc drop and the held-out drop against "none"; the held-out drop
+// against the trivial predictor
+bool passes_gates(const ModelFit& m, const ModelFit& none, const DiagnosisOptions& options);
+bool beats_trivial(const ModelFit& m, const ModelFit& trivial, const DiagnosisOptions& options);
+
 // runs the diagnosis; throws InputError when the data have fewer measurements than a
-// candidate needs (n > parameters + 2 for AICc)
+// candidate and the error model need (n > parameters + 2 for AICc), or for an unknown noise
+// model or key
 DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options = {});
+
+// RMS of the part of an effect the baseline cannot absorb: the case's prediction with the
+// effect minus the baseline model (and the free nuisance terms) refitted to it by least
+// squares, in the diagnosis' RMSE measure (rmse_unit); the size of a hidden effect as the
+// detection limits measure it
+double identifiable_signal_rms(const DiagnosisCase& c, Effect effect,
+                               const Eigen::VectorXd& baseline,
+                               const Eigen::VectorXd& effect_params,
+                               const DiagnosisOptions& options = {});
 
 }  // namespace kneesim::diagnosis

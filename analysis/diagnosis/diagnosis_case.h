@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "analysis/diagnosis/effect.h"
+#include "analysis/diagnosis/error_model.h"
 #include "analysis/diagnosis/fit.h"
 
 namespace kneesim::diagnosis {
@@ -82,6 +83,18 @@ struct DiagnosisCase {
   // alternatives a local fit cannot cross to (the sign of a load)
   std::set<Effect> multi_start_effects;
   NoiseModel noise_model = NoiseModel::per_quantity;  // see NoiseModel
+  // the case's full error model (error_model.h: correlation, specimen offset, the instrument's
+  // nuisance terms); diagnose() reduces it to DiagnosisOptions::noise_model
+  ErrorModel error_model;
+  // the series of the residual correlation: a key per row (default: group/specimen/quantity)
+  // and the abscissa along it (default: x), and the abscissa's unit for reports (default: the
+  // data's x_name)
+  std::vector<std::string> series_key;
+  std::vector<double> series_x;
+  std::string series_unit;
+  // every forward evaluation is a full simulation: the detection-limit simulation then uses a
+  // local linear model of each candidate about its no-effect point (detection.h)
+  bool expensive_forward = false;
 
   // effect parameter specs for this case (bounds, starts); default: effect_info(e).params
   std::function<std::vector<ParamSpec>(Effect)> effect_params;
@@ -97,9 +110,11 @@ struct DiagnosisCase {
   // the trivial predictor (optional; default: each quantity's measured mean over the training
   // rows): a case whose inputs already carry most of the answer names a stronger one (forces:
   // the training rows' mean medial share times each row's measured total). Predictions for
-  // `rows` from the `train` rows [quantity units].
+  // `rows` from the measured values `y` (all rows; replicates of the detection-limit simulation
+  // pass their own) of the `train` rows [quantity units].
   std::string trivial_model;
-  std::function<Eigen::VectorXd(const std::vector<int>& train, const std::vector<int>& rows)>
+  std::function<Eigen::VectorXd(const Eigen::VectorXd& y, const std::vector<int>& train,
+                                const std::vector<int>& rows)>
       trivial_predict;
   // dense model curves for plots (optional)
   std::function<std::vector<CurvePoint>(Effect effect, const Eigen::VectorXd& baseline,

@@ -18,7 +18,7 @@ const std::vector<EffectInfo>& library() {
        "rate over the first 50 000 cycles; simulator tests often exclude the first 0.5-1 Mc).",
        "dV/dN = k F S (1 + a exp(-N / N_r))", DataNeed::none,
        {{"running_in_excess", "initial extra wear-rate ratio a [-]", 1e-3, 1e3, 2.0, true,
-         {0.5, 5.0}},
+         {0.5, 5.0}, false, 0.0},
         {"running_in_cycles", "running-in decay constant N_r [cycles]", 1e3, 3e5, 15000.0, true,
          {4000.0, 50000.0}, true}}},
       {Effect::pressure_dependent_wear, "pressure_dependent_wear",
@@ -28,7 +28,7 @@ const std::vector<EffectInfo>& library() {
        "dV/dN = k (p / p_ref)^-alpha F S, p = mean contact pressure of the worn geometry",
        DataNeed::two_loads,
        {{"pressure_exponent", "exponent alpha of k ~ p^-alpha [-]", -3.0, 4.0, 0.5, false,
-         {1.5}}}},
+         {1.5}, false, 0.0}}},
       {Effect::cross_shear, "cross_shear",
        "UHMWPE wears far more under multidirectional sliding than under linear tracking: "
        "sliding across the principal molecular orientation breaks the oriented fibrils; k rises "
@@ -36,7 +36,7 @@ const std::vector<EffectInfo>& library() {
        "k = k_linear (1 + g CS), CS = cross-shear ratio of the local sliding path",
        DataNeed::kinematic_conditions,
        {{"cross_shear_gain", "gain g of k on the cross-shear ratio [-]", 0.0, 50.0, 3.0, false,
-         {}, true}}},
+         {}, true, 0.0}}},
       {Effect::creep, "creep",
        "Early penetration of UHMWPE is largely viscoelastic-plastic creep, not wear: depth "
        "grows without volume loss and saturates in time (Zhao 2008), so a wear-only model "
@@ -44,7 +44,7 @@ const std::vector<EffectInfo>& library() {
        "depth = scar depth + phi delta_el (1 - exp(-t / tau)), volume unchanged",
        DataNeed::depth_and_volume,
        {{"creep_ratio", "saturated creep over elastic penetration phi [-]", 1e-3, 20.0, 0.5,
-         true, {2.0}},
+         true, {2.0}, false, 0.0},
         {"creep_time_s", "creep time constant tau [s]", 60.0, 1e6, 3600.0, true,
          {600.0, 20000.0}, true}}},
       {Effect::incubation, "incubation",
@@ -57,7 +57,7 @@ const std::vector<EffectInfo>& library() {
        "dV/dN = k F S (1 - exp(-N / N_i)); V lags k F S N by k F S N_i after a few N_i",
        DataNeed::none,
        {{"incubation_cycles", "incubation time constant N_i [cycles]", 1e2, 5e5, 20000.0, true,
-         {3000.0, 100000.0}, true}}},
+         {3000.0, 100000.0}, true, 0.0}}},
       {Effect::friction, "friction",
        "Force-controlled kinematics follow the friction at the articulation and the rig's "
        "restraint; a friction coefficient different from the assumed one changes AP and IE "
@@ -65,7 +65,7 @@ const std::vector<EffectInfo>& library() {
        "mu replaced by a fitted friction coefficient (kinematics and Sarkar factor)",
        DataNeed::kinematics,
        {{"friction_coefficient", "friction coefficient mu [-]", 0.0, 0.5, 0.07, false,
-         {0.02, 0.15}, true}}},
+         {0.02, 0.15}, true, 0.07}}},
       {Effect::restraint, "restraint",
        "Force-controlled models miss the kinematics of the rig or the patient because the "
        "restraint they assume is not the one acting: the simulator's springs, or a patient's "
@@ -75,9 +75,9 @@ const std::vector<EffectInfo>& library() {
        "restraint springs k_ant, k_post, k_inside, k_IE scaled by s; AP laxity gap g",
        DataNeed::kinematics,
        {{"restraint_stiffness_scale", "scale s of every restraint stiffness [-]", 0.05, 20.0,
-         1.0, true, {0.3, 3.0}},
+         1.0, true, {0.3, 3.0}, false, 1.0},
         {"restraint_gap_mm", "AP laxity gap g of the restraint springs [mm]", 0.0, 10.0, 3.0,
-         false, {}, true}}},
+         false, {}, true, 3.0}}},
       {Effect::load_convention, "load_convention",
        "A force-controlled model moves as its loads drive it: an AP force or IE torque applied "
        "with the opposite sign (published work disagrees on the ISO 14243 directions, Wang "
@@ -88,13 +88,13 @@ const std::vector<EffectInfo>& library() {
        "AP force x s_AP delayed by d_AP; IE torque x s_IE delayed by d_IE (signs included)",
        DataNeed::kinematics,
        {{"ap_force_scale", "factor on the AP force waveform, sign included [-]", -3.0, 3.0, 1.0,
-         false, {-1.0}},
+         false, {-1.0}, false, 1.0},
         {"ap_force_shift_pct", "delay of the AP force waveform [% of the cycle]", -25.0, 25.0,
-         0.0, false, {}},
+         0.0, false, {}, false, 0.0},
         {"ie_torque_scale", "factor on the IE torque waveform, sign included [-]", -3.0, 3.0,
-         1.0, false, {}},
+         1.0, false, {}, false, 1.0},
         {"ie_torque_shift_pct", "delay of the IE torque waveform [% of the cycle]", -25.0, 25.0,
-         0.0, false, {}}}},
+         0.0, false, {}, false, 0.0}}},
       {Effect::load_line, "load_line",
        "The medial-lateral split follows where the resultant load line crosses the tibia: a "
        "wear rig fixes it by a medial offset of its axis, while in the patient the limb's "
@@ -104,7 +104,7 @@ const std::vector<EffectInfo>& library() {
        "tibial VV torque = d x axial force (load line moved medially by d)",
        DataNeed::compartment_forces,
        {{"load_line_shift_mm", "medial shift d of the axial load line [mm]", -15.0, 15.0, 0.0,
-         false, {-5.0, 5.0}}}},
+         false, {-5.0, 5.0}, false, 0.0}}},
       {Effect::vv_moment, "vv_moment",
        "In walking the external knee adduction moment (the ground reaction passing medial to "
        "the knee) loads the medial compartment with its own time course: two stance peaks, "
@@ -114,14 +114,14 @@ const std::vector<EffectInfo>& library() {
        "stance phase: 0 at heel strike, peaks at 15 % and 47 %, 0 from 62 %)",
        DataNeed::compartment_forces,
        {{"vv_stance_arm_mm", "amplitude A of the stance load-line shift (+ medial) [mm]", -15.0,
-         15.0, 0.0, false, {-5.0, 5.0}}}},
+         15.0, 0.0, false, {-5.0, 5.0}, false, 0.0}}},
       {Effect::vv_alignment, "vv_alignment",
        "A femoral component implanted or mounted in varus or valgus tilts the condyles in "
        "the frontal plane, so one condyle meets the insert first and carries more of the "
        "load.",
        "femoral component VV angle a (locked femoral VV)", DataNeed::compartment_forces,
        {{"femur_vv_deg", "femoral component VV alignment a (+ varus) [deg]", -5.0, 5.0, 0.0,
-         false, {-2.0, 2.0}}}},
+         false, {-2.0, 2.0}, false, 0.0}}},
   };
   return lib;
 }

@@ -7,6 +7,7 @@
 // cross-shear; a volume-only data set cannot show creep).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,6 +52,9 @@ struct ParamSpec {
   // shorter value fits the same), not a search bound: a fit may end there legitimately
   // (diagnose.h, find_params_at_bound); an upper bound is always a search bound
   bool lower_is_limit = false;
+  // the value at which the effect vanishes (the baseline model), for a parameter that sets the
+  // effect's size (detection.h); NaN for a shape parameter (a time constant, a delay's partner)
+  double null_value = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct EffectInfo {

@@ -26,6 +26,10 @@ struct FitResult {
 struct FitControl {
   int max_iterations = 100;  // Levenberg-Marquardt iterations per start [-]
   double tolerance = 1e-10;  // stop when a step lowers the cost by less than this fraction [-]
+  // profile the specimen variance ratio with a refit of the parameters at every trial value
+  // (exact profile likelihood); off for a forward model that is a full simulation, where the
+  // noise parameters are profiled at the fitted parameters and the two alternate instead
+  bool refit_in_noise_profile = true;
 };
 
 // minimises |r(params)|^2 from `initial`, plus every combination of the specs' extra starts

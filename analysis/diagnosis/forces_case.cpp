@@ -258,11 +258,11 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
   // training rows' mean medial share (load-weighted) times each row's measured total
   c.trivial_model = "mean measured medial share of the training rows (load-weighted) x the "
                     "row's measured total force";
-  c.trivial_predict = [rows = c.measured.rows, total = m.total_N](const std::vector<int>& train,
-                                                                  const std::vector<int>& idx) {
+  c.trivial_predict = [total = m.total_N](const Eigen::VectorXd& y, const std::vector<int>& train,
+                                          const std::vector<int>& idx) {
     double medial = 0.0, sum = 0.0;
     for (int i : train) {
-      medial += rows[static_cast<size_t>(i)].value;
+      medial += y[i];
       sum += total[static_cast<size_t>(i)];
     }
     const double share = sum > 0.0 ? medial / sum : 0.5;

@@ -140,7 +140,8 @@ TEST_CASE("a candidate must beat the case's trivial predictor by the held-out ma
   const double slope_ls = (n * sxy - sx * sy) / (n * sxx - sx * sx);
   const double level_ls = (sy - slope_ls * sx) / n;
   c.trivial_model = "the least-squares line of all the data";
-  c.trivial_predict = [rows, slope_ls, level_ls](const std::vector<int>&, const std::vector<int>& idx) {
+  c.trivial_predict = [rows, slope_ls, level_ls](const Eigen::VectorXd&, const std::vector<int>&,
+                                                 const std::vector<int>& idx) {
     Eigen::VectorXd v(static_cast<Eigen::Index>(idx.size()));
     for (size_t i = 0; i < idx.size(); ++i) {
       v[static_cast<Eigen::Index>(i)] = level_ls + slope_ls * rows[static_cast<size_t>(idx[i])].x;

@@ -1,0 +1,352 @@
+#include "analysis/diagnosis/detection.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <random>
+
+namespace kneesim::diagnosis::detail {
+namespace {
+
+// bisection steps on ln(size) per replicate after the bracket (a bracket of 16x resolved to
+// 16^(1/16) = 19 %, then interpolated to about 10 %)
+constexpr int kBisections = 4;
+// the linear-theory start: the bracket spans this factor either side of it
+constexpr double kBracket = 4.0;
+
+// The size coordinate u > 0 of one parameter: value(u) and the largest u within the bounds.
+struct SizeAxis {
+  ParamSpec spec;
+  int index = 0;       // in the effect's parameters
+  int direction = 1;   // +1 / -1
+  double u_max = 0.0;
+  double u_min = 0.0;  // smallest meaningful u (log parameters with null 0: the lower bound)
+  double value(double u) const {
+    const double null = spec.null_value;
+    if (!spec.log_scale) return null + direction * u;
+    if (!(null > 0.0)) return u;
+    return null * std::exp(direction * u);
+  }
+};
+
+std::vector<SizeAxis> size_axes(const std::vector<ParamSpec>& specs) {
+  std::vector<SizeAxis> out;
+  for (size_t i = 0; i < specs.size(); ++i) {
+    const ParamSpec& s = specs[i];
+    if (!std::isfinite(s.null_value)) continue;
+    for (int d : {1, -1}) {
+      SizeAxis a{s, static_cast<int>(i), d, 0.0, 0.0};
+      if (!s.log_scale) {
+        a.u_max = d > 0 ? s.upper - s.null_value : s.null_value - s.lower;
+      } else if (!(s.null_value > 0.0)) {
+        if (d < 0) continue;
+        a.u_max = s.upper;
+        a.u_min = s.lower;
+      } else {
+        a.u_max = d > 0 ? std::log(s.upper / s.null_value) : std::log(s.null_value / s.lower);
+      }
+      if (a.u_max > a.u_min && a.u_max > 0.0) out.push_back(a);
+    }
+  }
+  return out;
+}
+
+// the effect's parameters at the null point: size parameters at their null value, shape
+// parameters at their initial value (a log parameter whose null is 0 at its lower bound)
+Eigen::VectorXd null_point(const std::vector<ParamSpec>& specs) {
+  Eigen::VectorXd p(static_cast<Eigen::Index>(specs.size()));
+  for (size_t i = 0; i < specs.size(); ++i) {
+    const ParamSpec& s = specs[i];
+    double v = std::isfinite(s.null_value) ? s.null_value : s.initial;
+    if (s.log_scale && !(v > 0.0)) v = s.lower;
+    p[static_cast<Eigen::Index>(i)] = std::clamp(v, s.lower, s.upper);
+  }
+  return p;
+}
+
+double fitted_space(const ParamSpec& s, double v) {
+  return s.log_scale ? std::log(std::max(v, s.lower)) : v;
+}
+
+// a local linear model of every candidate about its null point and of the baseline about the
+// refitted baseline's parameters (forward differences in the fitted space), for forward
+// models that are full simulations
+struct LinearModel {
+  Eigen::VectorXd base_params;
+  Eigen::VectorXd f0;                  // baseline at base_params, all rows
+  Eigen::MatrixXd jb;                  // d f / d baseline params (fitted space)
+  struct Candidate {
+    Eigen::VectorXd null_params;       // effect parameters of the linearization point
+    Eigen::VectorXd f_null;            // prediction there, all rows
+    Eigen::MatrixXd je;                // d f / d effect params (fitted space)
+    std::vector<ParamSpec> specs;
+  };
+  std::map<Effect, Candidate> candidates;
+};
+
+std::shared_ptr<LinearModel> linearize(const Problem& pb, const Eigen::VectorXd& base) {
+  auto lm = std::make_shared<LinearModel>();
+  const auto rows = all_rows(static_cast<size_t>(pb.y.size()));
+  const DiagnosisCase& c = pb.c;
+  const Eigen::VectorXd none;
+  lm->base_params = base;
+  lm->f0 = c.predict(Effect::none, base, none, rows);
+  auto step_of = [](const ParamSpec& s, double v) {
+    // a step inside the bounds, in the fitted space
+    double h = s.log_scale ? 0.05 : 0.02 * (s.upper - s.lower);
+    const double up = s.log_scale ? std::log(s.upper) : s.upper;
+    if (fitted_space(s, v) + h > up) h = -h;
+    return h;
+  };
+  auto from_fitted = [](const ParamSpec& s, double z) { return s.log_scale ? std::exp(z) : z; };
+  lm->jb.resize(lm->f0.size(), base.size());
+  for (Eigen::Index j = 0; j < base.size(); ++j) {
+    const ParamSpec& s = c.baseline_params[static_cast<size_t>(j)];
+    const double h = step_of(s, base[j]);
+    Eigen::VectorXd b = base;
+    b[j] = from_fitted(s, fitted_space(s, base[j]) + h);
+    lm->jb.col(j) = (c.predict(Effect::none, b, none, rows) - lm->f0) / h;
+  }
+  for (Effect e : c.candidates) {
+    LinearModel::Candidate cand;
+    cand.specs = case_effect_params(c, e);
+    cand.null_params = null_point(cand.specs);
+    cand.f_null = c.predict(e, base, cand.null_params, rows);
+    cand.je.resize(cand.f_null.size(), cand.null_params.size());
+    for (Eigen::Index j = 0; j < cand.null_params.size(); ++j) {
+      const ParamSpec& s = cand.specs[static_cast<size_t>(j)];
+      const double h = step_of(s, cand.null_params[j]);
+      Eigen::VectorXd p = cand.null_params;
+      p[j] = from_fitted(s, fitted_space(s, p[j]) + h);
+      cand.je.col(j) = (c.predict(e, base, p, rows) - cand.f_null) / h;
+    }
+    lm->candidates[e] = std::move(cand);
+  }
+  return lm;
+}
+
+// the case with its forward model replaced by the linear model
+DiagnosisCase linear_case(const DiagnosisCase& c, std::shared_ptr<const LinearModel> lm) {
+  DiagnosisCase lin = c;
+  lin.expensive_forward = false;
+  lin.predict = [lm, specs = c.baseline_params](Effect e, const Eigen::VectorXd& b,
+                                                const Eigen::VectorXd& ep,
+                                                const std::vector<int>& rows) {
+    Eigen::VectorXd db(b.size());
+    for (Eigen::Index j = 0; j < b.size(); ++j) {
+      db[j] = fitted_space(specs[static_cast<size_t>(j)], b[j]) -
+              fitted_space(specs[static_cast<size_t>(j)], lm->base_params[j]);
+    }
+    Eigen::VectorXd full;
+    if (e == Effect::none || !lm->candidates.count(e)) {
+      full = lm->f0 + lm->jb * db;
+    } else {
+      const auto& cand = lm->candidates.at(e);
+      Eigen::VectorXd dp(ep.size());
+      for (Eigen::Index j = 0; j < ep.size(); ++j) {
+        const ParamSpec& s = cand.specs[static_cast<size_t>(j)];
+        dp[j] = fitted_space(s, ep[j]) - fitted_space(s, cand.null_params[j]);
+      }
+      full = cand.f_null + lm->jb * db + cand.je * dp;
+    }
+    Eigen::VectorXd out(static_cast<Eigen::Index>(rows.size()));
+    for (size_t i = 0; i < rows.size(); ++i) out[static_cast<Eigen::Index>(i)] = full[rows[i]];
+    return out;
+  };
+  return lin;
+}
+
+}  // namespace
+
+Signal identifiable_signal(const Problem& pb, Effect effect, const Eigen::VectorXd& baseline,
+                           const Eigen::VectorXd& effect_params) {
+  // the baseline refitted to the noise-free prediction with the effect: white residuals in the
+  // converted units, the free nuisance terms only (a prior-bound term cannot absorb an effect
+  // of any size)
+  Problem p = pb;
+  p.random_effect = false;
+  p.em.correlation = Correlation::none;
+  p.em.specimen_offset = false;
+  std::vector<NuisanceTerm> free_terms;
+  for (const auto& t : pb.em.nuisance) {
+    if (!(t.prior_sd > 0.0)) free_terms.push_back(t);
+  }
+  p.em.nuisance = free_terms;
+  p.clusters.clear();
+  for (Eigen::Index i = 0; i < pb.y.size(); ++i) p.clusters.push_back({static_cast<int>(i)});
+  const auto rows = all_rows(static_cast<size_t>(pb.y.size()));
+  const Eigen::Index nb = baseline.size();
+  Eigen::VectorXd params(nb + effect_params.size());
+  params << baseline, effect_params;
+  const Eigen::VectorXd truth = predict(pb, effect, params, rows);
+  Noise white{pb.unit, 0.0, 0.0, 0.0, 0.0};
+  const FitState fs = fit_clusters(p, truth, Effect::none, pb.c.baseline_params, baseline,
+                                   p.clusters, white, false);
+  Eigen::VectorXd fitted = fs.eval.pred;
+  if (fs.eval.beta.size() > 0) fitted += nuisance_columns(p, rows, fs.eval.pred) * fs.eval.beta;
+  Signal s;
+  s.delta = truth - fitted;
+  s.rms = score(pb, truth, fitted);
+  return s;
+}
+
+double error_model_rms(const Problem& pb, const Noise& noise, double sigma,
+                       const Eigen::VectorXd& prediction) {
+  // marginal sd per row: sigma sqrt(C_ii) / w_i, C_ii = 1 + rho g_i^2 + rho_o h_i^2, plus the
+  // priored nuisance terms' variance
+  const auto rows = all_rows(static_cast<size_t>(pb.y.size()));
+  Eigen::VectorXd var(pb.y.size());
+  for (Eigen::Index i = 0; i < var.size(); ++i) {
+    const double g = pb.random_effect ? pb.dg[i] * noise.w[i] : 0.0;
+    const double h = pb.em.specimen_offset && pb.offset_rows[static_cast<size_t>(i)] ? noise.w[i] : 0.0;
+    const double cii = 1.0 + noise.rho * g * g + noise.rho_offset * h * h;
+    var[i] = sigma * sigma * cii / (noise.w[i] * noise.w[i]);
+  }
+  if (!pb.em.nuisance.empty()) {
+    const Eigen::MatrixXd x = nuisance_columns(pb, rows, prediction);
+    for (size_t j = 0; j < pb.em.nuisance.size(); ++j) {
+      const double tau = pb.em.nuisance[j].prior_sd;
+      if (tau > 0.0) var += (tau * x.col(static_cast<Eigen::Index>(j))).array().square().matrix();
+    }
+  }
+  return score(pb, Eigen::VectorXd::Zero(var.size()), var.cwiseSqrt());
+}
+
+DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& res,
+                                 const Noise& nz, const DiagnosisOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  DetectionResult out;
+  out.rate = options.detection_rate;
+  out.replicates = options.detection_replicates;
+  const ModelFit& none = res.candidates.front();
+  const Eigen::VectorXd base = none.params;
+  // the forward model of the replicates
+  DiagnosisCase lin;
+  std::unique_ptr<Problem> owned;
+  const Problem* pbp = &pb_data;
+  if (pb_data.c.expensive_forward) {
+    out.method = "local linear model of each candidate about its null point";
+    lin = linear_case(pb_data.c, linearize(pb_data, base));
+    owned = std::make_unique<Problem>(make_problem(lin, options));
+    owned->dg = pb_data.dg;
+    owned->fixed_w = pb_data.fixed_w;
+    pbp = owned.get();
+  } else {
+    out.method = "refits of the forward model";
+  }
+  const Problem& pb = *pbp;
+  const auto rows = all_rows(static_cast<size_t>(pb.y.size()));
+  const Eigen::VectorXd f0 = predict(pb, Effect::none, base, rows);
+  const double sigma = none.noise.sigma;
+  out.noise_rms = error_model_rms(pb, nz, sigma, f0);
+
+  // common random numbers: R noise draws from the fitted error model, shared by every
+  // candidate and size
+  const int reps = options.detection_replicates;
+  std::mt19937_64 rng(options.seed + 7919);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const Whitener wh = make_whitener(pb, pb.clusters, nz);
+  const auto flat = flatten(pb.clusters);
+  const Eigen::MatrixXd xn = pb.em.nuisance.empty() ? Eigen::MatrixXd() : nuisance_columns(pb, rows, f0);
+  std::vector<Eigen::VectorXd> draws;
+  for (int r = 0; r < reps; ++r) {
+    Eigen::VectorXd xi(static_cast<Eigen::Index>(flat.size()));
+    for (Eigen::Index i = 0; i < xi.size(); ++i) xi[i] = normal(rng);
+    const Eigen::VectorXd z = wh.color(xi);
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(pb.y.size());
+    for (size_t i = 0; i < flat.size(); ++i) e[flat[i]] += sigma * z[static_cast<Eigen::Index>(i)] / nz.w[flat[i]];
+    for (size_t j = 0; j < pb.em.nuisance.size(); ++j) {
+      const double tau = pb.em.nuisance[j].prior_sd;
+      if (tau > 0.0) e += tau * normal(rng) * xn.col(static_cast<Eigen::Index>(j));
+    }
+    draws.push_back(e);
+  }
+
+  const double ic = options.ic_threshold;
+  for (Effect e : pb.c.candidates) {
+    const std::vector<ParamSpec> specs = case_effect_params(pb.c, e);
+    const Eigen::VectorXd p_null = null_point(specs);
+    for (const SizeAxis& axis : size_axes(specs)) {
+      auto params_at = [&](double u) {
+        Eigen::VectorXd p = p_null;
+        p[axis.index] = std::clamp(axis.value(u), axis.spec.lower, axis.spec.upper);
+        return p;
+      };
+      auto full = [&](const Eigen::VectorXd& p) {
+        Eigen::VectorXd v(base.size() + p.size());
+        v << base, p;
+        return v;
+      };
+      // linear theory for the bracket: the whitened identifiable signal at a reference size,
+      // scaled to the noncentrality that passes the AICc gate with 80 % chance
+      const double u_ref = std::max(axis.u_min, 0.1 * axis.u_max);
+      const Signal ref = identifiable_signal(pb, e, base, params_at(u_ref));
+      Eigen::VectorXd z(static_cast<Eigen::Index>(flat.size()));
+      for (size_t i = 0; i < flat.size(); ++i) z[static_cast<Eigen::Index>(i)] = ref.delta[flat[i]] * nz.w[flat[i]];
+      const double q = wh.whiten(z).squaredNorm() / std::max(sigma * sigma, 1e-300);
+      const double target = std::pow(0.8416 + std::sqrt(ic + 2.0 * static_cast<double>(specs.size())), 2);
+      double u_lin = q > 0.0 ? u_ref * std::sqrt(target / q) : axis.u_max;
+      if (axis.spec.log_scale && !(axis.spec.null_value > 0.0)) u_lin = std::max(u_lin, axis.u_min);
+      const double u_hi = std::min(axis.u_max, kBracket * u_lin);
+      const double u_lo = std::max(axis.u_min, u_hi / (kBracket * kBracket));
+
+      auto named = [&](int r, double u) {
+        const Eigen::VectorXd pe = params_at(u);
+        Eigen::VectorXd y = f0 + (predict(pb, e, full(pe), rows) - f0) + draws[static_cast<size_t>(r)];
+        const ModelFit n0 = fit_candidate_fixed_noise(pb, y, Effect::none, base, nz, false);
+        const ModelFit m = fit_candidate_fixed_noise(pb, y, e, full(pe), nz, false);
+        if (!(m.aicc < n0.aicc - ic)) return false;
+        if (!find_params_at_bound(m.specs, m.params).empty()) return false;
+        const double h_none =
+            score(pb, y, heldout_predictions(pb, y, Effect::none, n0.specs, n0.params, nz));
+        const double h_e = score(pb, y, heldout_predictions(pb, y, e, m.specs, m.params, nz));
+        if (!(h_e < (1.0 - options.heldout_threshold) * h_none)) return false;
+        if (options.trivial_gate) {
+          const double h_t = trivial_predictor(pb, y, nz).heldout_rmse;
+          if (!(h_e < (1.0 - options.heldout_threshold) * h_t)) return false;
+        }
+        return true;
+      };
+      std::vector<double> thresholds;
+      for (int r = 0; r < reps; ++r) {
+        double lo = u_lo, hi = u_hi;
+        if (!named(r, hi)) {
+          if (hi >= axis.u_max || !named(r, axis.u_max)) {
+            thresholds.push_back(std::numeric_limits<double>::infinity());
+            continue;
+          }
+          lo = hi, hi = axis.u_max;
+        } else if (named(r, lo)) {
+          thresholds.push_back(lo);
+          continue;
+        }
+        for (int b = 0; b < kBisections; ++b) {
+          const double mid = std::sqrt(lo * hi);
+          (named(r, mid) ? hi : lo) = mid;
+        }
+        thresholds.push_back(std::sqrt(lo * hi));
+      }
+      std::sort(thresholds.begin(), thresholds.end());
+      const size_t k = std::min(thresholds.size() - 1,
+                                static_cast<size_t>(std::ceil(options.detection_rate * reps)) - 1);
+      DetectionLimit lim;
+      lim.effect = e;
+      lim.param = axis.spec.name;
+      lim.null_value = axis.spec.null_value;
+      lim.direction = axis.direction;
+      lim.replicates = reps;
+      lim.reached = std::isfinite(thresholds[k]);
+      const double u = lim.reached ? thresholds[k] : axis.u_max;
+      lim.value = params_at(u)[axis.index];
+      lim.signal_rms = identifiable_signal(pb, e, base, params_at(u)).rms;
+      lim.ratio = out.noise_rms > 0.0 ? lim.signal_rms / out.noise_rms : 0.0;
+      out.limits.push_back(lim);
+    }
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace kneesim::diagnosis::detail

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <set>
 #include <sstream>
 #include <variant>
 
@@ -213,6 +214,10 @@ void register_material(Registry& r, const std::string& prefix, MaterialConfig& m
     "wear factor k of the wear law (Archard: dh = k p ds sqrt(1 + 3 mu^2))");
   r.text(prefix + "source", m.source,
     "where the material's values come from (reported in outputs)");
+  r.text(prefix + "wear_factor_source", m.wear_factor_source,
+    "where the wear factor comes from (a citation; required wherever a material table sets the factor)");
+  r.flag(prefix + "wear_factor_independent", m.wear_factor_independent,
+    "the wear factor is independent of what kneesim is compared with (false: its wear volumes are not predictions)");
 }
 
 Registry make_registry(Config& c) {
@@ -491,6 +496,8 @@ std::string materials_library_path() {
 std::map<std::string, MaterialConfig> take_material_tables(std::map<std::string, Entry>& flat,
                                                            const std::string& section) {
   std::map<std::string, MaterialConfig> out;
+  std::map<std::string, std::string> factor_origin;  // material -> where its factor was set
+  std::set<std::string> sourced;                     // materials that name the factor's source
   const std::string prefix = section.empty() ? "" : section + ".";
   for (auto it = flat.lower_bound(prefix); it != flat.end() && it->first.starts_with(prefix);) {
     const std::string rest = it->first.substr(prefix.size());
@@ -509,10 +516,23 @@ std::map<std::string, MaterialConfig> take_material_tables(std::map<std::string,
     if (!f) {
       throw InputError(it->second.origin + ": unknown key '" + it->first + "' (allowed: "
                        "elastic_modulus_MPa, poisson, yield_MPa, density_g_per_cm3, friction, "
-                       "wear_factor_mm3_per_Nmm, source)");
+                       "wear_factor_mm3_per_Nmm, wear_factor_source, wear_factor_independent, "
+                       "source)");
     }
     f->assign(it->second.value, it->second.origin + " [" + it->first + "]");
+    if (key == "wear_factor_mm3_per_Nmm") factor_origin[name] = it->second.origin;
+    if (key == "wear_factor_source") sourced.insert(name);
     it = flat.erase(it);
+  }
+  // a wear factor without its source cannot be told from a prediction's input
+  for (const auto& [name, origin] : factor_origin) {
+    if (!sourced.count(name) || out[name].wear_factor_source.empty()) {
+      throw InputError(origin + ": material '" + name + "' sets wear_factor_mm3_per_Nmm = " +
+                       toml_number(out[name].wear_factor_mm3_per_Nmm) + " without a "
+                       "wear_factor_source (allowed: a non-empty text naming where the factor "
+                       "comes from; add wear_factor_independent = false when it was calibrated "
+                       "on what kneesim is compared with)");
+    }
   }
   return out;
 }
@@ -649,6 +669,14 @@ Config load_config(const std::filesystem::path& file, const std::vector<Override
     registry.find("material.name")->assign(it->second.value, it->second.origin);
   }
   c.material = find_material(c, c.material.name);
+  // a factor set for this run without its own source: the override is its source, and it is
+  // not known to be independent of the comparisons
+  if (auto it = flat.find("material.wear_factor_mm3_per_Nmm");
+      it != flat.end() && !flat.count("material.wear_factor_source")) {
+    c.material.wear_factor_source = it->second.origin + " (replacing " +
+                                    c.material.wear_factor_source + ")";
+    c.material.wear_factor_independent = false;
+  }
   // pass 2: every key, in order
   for (const auto& [key, entry] : flat) {
     const Field* f = registry.find(key);

@@ -25,6 +25,13 @@ struct MaterialConfig {
   double friction = 0.07;                    // Coulomb coefficient against CoCr [-]
   double wear_factor_mm3_per_Nmm = 2.643e-10;  // Archard k [mm^3/(N mm)]
   std::string source;                        // where the values come from
+  // where the wear factor comes from, and whether it is independent of the comparisons the
+  // project makes (false: calibrated on, or derived from, what kneesim is judged against, so
+  // wear volumes made with it are not predictions; `kneesim compare` says so). A material
+  // table that sets the factor must name its source (bad input otherwise); a factor set by an
+  // override without a source gets the override as its source and counts as not independent
+  std::string wear_factor_source = "Pal 2008 (conventional UHMWPE against CoCr)";
+  bool wear_factor_independent = true;
 };
 
 struct Config {

@@ -13,9 +13,9 @@
 namespace kneesim::wear {
 namespace {
 
-// v4: records of 18 fields (v3: 16, without the energy ratios) and the deformable insert's
-// state
-constexpr char kMagic[16] = "kneesim-wear-v4";
+// v5: records of 22 fields (v4: 18, without the wear potential, sliding distance, cross-shear
+// and stance pressure; v3: 16, without the energy ratios) and the deformable insert's state
+constexpr char kMagic[16] = "kneesim-wear-v5";
 
 class Writer {
  public:

@@ -8,21 +8,25 @@
 namespace kneesim::wear {
 
 WearAccumulator::WearAccumulator(int n, WearLawParams params)
-    : params_(params), depth_(n, 0.0), wxx_(n, 0.0), wxz_(n, 0.0), wzz_(n, 0.0) {}
+    : params_(params), depth_(n, 0.0), wxx_(n, 0.0), wxz_(n, 0.0), wzz_(n, 0.0), area_(n, 0.0),
+      site_work_(n, 0.0) {}
 
 void WearAccumulator::observe(const engine::Model& model, const engine::State&,
                               const engine::Data& data) {
   const double dt = model.dt;
+  step_load_ = step_load_slip_ = 0.0;
   for (int e : data.in_contact) {
     add(e, data.pressure[e], data.slip_speed[e] * dt, data.slip_velocity_T[e],
         model.insert.area[e]);
   }
+  if (step_load_ > 0.0) sliding_ += step_load_slip_ / step_load_;
 }
 
 void WearAccumulator::observe_nodes(const engine::Model& model, const engine::State&,
                                     const engine::Data& data) {
   const double dt = model.dt;
   const engine::solid::SurfaceContactData& c = data.insert_contact;
+  step_load_ = step_load_slip_ = 0.0;
   for (int i = 0; i < model.insert_contact.size(); ++i) {
     // the friction on the node opposes its slip against the femur (engine/insert_solid.h):
     // its direction is the slip direction the cross-shear tensor needs
@@ -32,10 +36,16 @@ void WearAccumulator::observe_nodes(const engine::Model& model, const engine::St
                                        : Eigen::Vector3d::Zero();
     add(i, c.pressure[i], c.slip_speed[i] * dt, v, model.insert_contact.area[i]);
   }
+  if (step_load_ > 0.0) sliding_ += step_load_slip_ / step_load_;
 }
 
 void WearAccumulator::add(int e, double p, double ds, const Eigen::Vector3d& v, double area) {
-  if (!(p > 0.0) || !(ds > 0.0)) return;
+  if (!(p > 0.0)) return;
+  step_load_ += p * area;  // a site in contact carries load whether or not it slips
+  if (!(ds > 0.0)) return;
+  step_load_slip_ += p * area * ds;
+  area_[e] = area;
+  site_work_[e] += p * area * ds;
   // the pressure-dependent law weights each step by (p / p_ref)^-alpha
   const double weight =
       params_.law == WearLaw::kPressureDependent ? std::pow(p / params_.p_ref, -params_.alpha)
@@ -63,6 +73,42 @@ std::vector<double> WearAccumulator::cross_shear_ratio() const {
     cs[e] = std::clamp(lo / tr, 0.0, 0.5);
   }
   return cs;
+}
+
+std::vector<double> WearAccumulator::law_gain() const {
+  std::vector<double> gain(depth_.size(), 1.0);
+  switch (params_.law) {
+    case WearLaw::kArchard:
+    case WearLaw::kRunningIn:
+    case WearLaw::kIncubation:
+    case WearLaw::kPressureDependent:
+      break;
+    case WearLaw::kCrossShear: {
+      const std::vector<double> cs = cross_shear_ratio();
+      for (size_t e = 0; e < gain.size(); ++e) gain[e] = 1.0 + params_.beta * cs[e];
+      break;
+    }
+  }
+  return gain;
+}
+
+double WearAccumulator::wear_potential() const {
+  // depth_per_cycle() / k per site, times the site's area: the same weights, without k
+  const double sarkar = sarkar_factor(params_.friction);
+  const std::vector<double> gain = law_gain();
+  double w = 0.0;
+  for (size_t e = 0; e < depth_.size(); ++e) w += area_[e] * gain[e] * sarkar * depth_[e];
+  return w;
+}
+
+double WearAccumulator::mean_cross_shear() const {
+  const std::vector<double> cs = cross_shear_ratio();
+  double num = 0.0, den = 0.0;
+  for (size_t e = 0; e < cs.size(); ++e) {
+    num += site_work_[e] * cs[e];
+    den += site_work_[e];
+  }
+  return den > 0.0 ? num / den : 0.0;
 }
 
 std::vector<double> WearAccumulator::depth_per_cycle() const {

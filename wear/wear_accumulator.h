@@ -53,11 +53,23 @@ class WearAccumulator {
   // cross-shear ratio per element over the cycle [-] (0 for unidirectional sliding)
   std::vector<double> cross_shear_ratio() const;
   double sliding_work() const { return work_; }  // sum of p A ds over the cycle [J]
+  // the cycle's wear volume per unit wear factor: what the law multiplies by k (Archard:
+  // sarkar(mu) sum_e A_e sum_steps p ds; the pressure-dependent and cross-shear laws weight
+  // each term as depth_per_cycle() does), so that volume = k x potential on the observed
+  // geometry [m^3 / (m^2/N) = J]
+  double wear_potential() const;
+  // the load-weighted slip of the contact over the cycle: sum over steps of
+  // sum_e p A ds / sum_e p A [m] (the distance S of V = k F S for a uniform load)
+  double sliding_distance() const { return sliding_; }
+  // the sliding-work-weighted mean of the sites' cross-shear ratios over the cycle [-]
+  double mean_cross_shear() const;
 
  private:
   // one site's step: pressure p [Pa], slip ds [m] along the slip velocity v (T frame) [m/s],
   // over the site's area [m^2]
   void add(int site, double p, double ds, const Eigen::Vector3d& v, double area);
+  // the law's factor on k per site from the whole cycle (cross-shear), 1 otherwise [-]
+  std::vector<double> law_gain() const;
 
   WearLawParams params_;
   std::vector<double> depth_;      // Archard-weighted p ds, per site [Pa m]
@@ -65,6 +77,10 @@ class WearAccumulator {
   // w = p ds, from which the principal direction and cross-shear follow (Kang 2008)
   std::vector<double> wxx_, wxz_, wzz_;
   double work_ = 0.0;
+  std::vector<double> area_;       // the site's area on the observed geometry [m^2]
+  std::vector<double> site_work_;  // sum of p A ds per site [J]
+  double sliding_ = 0.0;           // load-weighted slip [m]
+  double step_load_ = 0.0, step_load_slip_ = 0.0;  // this step's sum p A [N], p A ds [N m]
 };
 
 }  // namespace kneesim::wear

@@ -16,10 +16,14 @@
 namespace kneesim::wear {
 namespace {
 
+// stance phase of the gait cycle: heel strike to toe off, 0-60 % (ISO 14243)
+constexpr double kStanceEndPct = 60.0;
+
 // kinematic and contact figures of a simulated cycle into the record
 void fill_cycle_figures(const std::vector<engine::Frame>& frames, UpdateRecord& r) {
   double ap_lo = 1e9, ap_hi = -1e9, ie_lo = 1e9, ie_hi = -1e9, area = 0.0, peaks = 0.0;
-  int n = 0;
+  double stance = 0.0;
+  int n = 0, n_stance = 0;
   for (const engine::Frame& f : frames) {
     ap_lo = std::min(ap_lo, f.joint.ap);
     ap_hi = std::max(ap_hi, f.joint.ap);
@@ -30,8 +34,13 @@ void fill_cycle_figures(const std::vector<engine::Frame>& frames, UpdateRecord& 
       area += f.contact.area[0] + f.contact.area[1];
       peaks += f.contact.peak_pressure;
       ++n;
+      if (f.gait_pct < kStanceEndPct) {
+        stance += f.contact.mean_pressure;
+        ++n_stance;
+      }
     }
   }
+  r.stance_mean_pressure = n_stance ? stance / n_stance : 0.0;
   r.ap_rom = frames.empty() ? 0.0 : ap_hi - ap_lo;
   r.ie_rom = frames.empty() ? 0.0 : ie_hi - ie_lo;
   r.contact_area = n ? area / n : 0.0;
@@ -61,13 +70,17 @@ std::string check_update_record(const UpdateRecord& r, bool closed_insert) {
                            r.peak_pressure, r.mean_peak_pressure, r.ap_rom, r.ie_rom,
                            r.von_mises_surface, r.von_mises_subsurface,
                            r.plastic_strain_surface, r.plastic_strain_subsurface,
-                           r.kinetic_to_internal_max, r.kinetic_to_internal_cycle};
+                           r.kinetic_to_internal_max, r.kinetic_to_internal_cycle,
+                           r.wear_potential, r.sliding_distance, r.cross_shear,
+                           r.stance_mean_pressure};
   const char* names[] = {"volume",       "volume_depth",  "max_depth",
                          "medial_volume", "lateral_volume", "contact_area",
                          "peak_pressure", "mean_peak_pressure", "ap_rom", "ie_rom",
                          "von_mises_surface", "von_mises_subsurface",
                          "plastic_strain_surface", "plastic_strain_subsurface",
-                         "kinetic_to_internal_max", "kinetic_to_internal_cycle"};
+                         "kinetic_to_internal_max", "kinetic_to_internal_cycle",
+                         "wear_potential", "sliding_distance", "cross_shear",
+                         "stance_mean_pressure"};
   const long cycles = static_cast<long>(r.cycles);
   for (size_t i = 0; i < std::size(fields); ++i) {
     if (!std::isfinite(fields[i])) {
@@ -171,11 +184,16 @@ void fill_solid_figures(const engine::Model& model, const engine::State& state,
   r.kinetic_to_internal_cycle = energy.cycle;
 }
 
-// the last record gets the figures of a cycle simulated on its geometry and is complete
+// the last record gets the figures of a cycle simulated on its geometry (with the wear
+// accumulated over it) and is complete
 void complete_record(const engine::RunResult& run, const engine::Model& model,
-                     const engine::State& state, const SolidCycle& cycle, WearResult& result,
+                     const engine::State& state, const SolidCycle& cycle,
+                     const WearAccumulator& acc, WearResult& result,
                      const std::vector<double>& depth, const WearOptions& o) {
   fill_cycle_figures(run.frames, result.records.back());
+  result.records.back().wear_potential = acc.wear_potential();
+  result.records.back().sliding_distance = acc.sliding_distance();
+  result.records.back().cross_shear = acc.mean_cross_shear();
   if (!model.insert_solid.empty()) {
     fill_solid_figures(model, state, cycle, result.records.back());
   }
@@ -183,6 +201,15 @@ void complete_record(const engine::RunResult& run, const engine::Model& model,
   if (o.on_update) o.on_update(result.records, depth);
 }
 }  // namespace
+
+double calc_run_wear_potential(const std::vector<UpdateRecord>& records, const WearLawParams& law) {
+  double w = 0.0;
+  for (size_t u = 0; u + 1 < records.size(); ++u) {
+    const double n = records[u + 1].cycles - records[u].cycles;
+    w += records[u].wear_potential * effective_cycles(law, records[u].cycles, n);
+  }
+  return w;
+}
 
 long update_interval(const WearOptions& o, int u) {
   if (o.schedule.empty()) return o.update_every;
@@ -255,7 +282,7 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
       break;
     }
     // the cycle's kinematics and contact describe the geometry it ran on: the last record's
-    complete_record(run, model, state, cycle, result, depth, o);
+    complete_record(run, model, state, cycle, acc, result, depth, o);
     const std::vector<double> per_cycle = calc_site_depth(model, acc);
 
     // scale by the cycles of this update; halve them while a face or element would fold
@@ -327,15 +354,17 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
     }
     if (o.progress) o.progress(static_cast<double>(cycles_done) / o.total_cycles);
   }
-  // the last geometry's kinematics and contact: one more cycle on it, no wear accumulated
+  // the last geometry's kinematics and contact: one more cycle on it, its wear accumulated for
+  // the record's factor-free figures only
   if (result.status == engine::StepStatus::kOk) {
+    WearAccumulator acc = make_accumulator(model, o.law);
     const engine::RunResult run =
-        simulate_cycle(model, state, pristine.dt_safety, o.law, nullptr, cycle);
+        simulate_cycle(model, state, pristine.dt_safety, o.law, &acc, cycle);
     if (run.status != engine::StepStatus::kOk) {
       result.status = run.status;
       result.message = std::string(engine::to_string(run.status)) + " in the cycle on the final geometry";
     } else {
-      complete_record(run, model, state, cycle, result, depth, o);
+      complete_record(run, model, state, cycle, acc, result, depth, o);
     }
   }
   result.vertex_depth = depth;

@@ -51,7 +51,14 @@ struct UpdateRecord {
   // largest over the loaded steps, and of the cycle sums (quasi-static validity, below 5 %)
   double kinetic_to_internal_max = 0;    // [-]
   double kinetic_to_internal_cycle = 0;  // [-]
-  static constexpr int kFields = 18;
+  // what does not depend on the wear factor (wear/wear_accumulator.h), of the same cycle:
+  // the volume per cycle per unit factor (volume = k x potential), the load-weighted slip,
+  // the sliding-work-weighted cross-shear ratio, and the mean contact pressure over stance
+  double wear_potential = 0;       // [J] = [m^3 / (m^2/N)]
+  double sliding_distance = 0;     // [m]
+  double cross_shear = 0;          // [-]
+  double stance_mean_pressure = 0; // mean over the frames of 0-60 % in contact of force/area [Pa]
+  static constexpr int kFields = 22;
 };
 
 // the enclosed-volume loss and the depth integral of a closed insert differ by this fraction
@@ -99,6 +106,11 @@ struct WearResult {
   std::vector<engine::Frame> frames;    // the last simulated cycle (on the final geometry)
   int resumed_from_update = -1;         // update index the run resumed after, -1 if fresh
 };
+
+// the wear potential of the whole run with its geometry updates: each geometry's potential per
+// cycle times the (law-weighted, effective_cycles) cycles run on it [J]; times k it is the
+// depth-integral volume (exactly so while the geometry is the pristine one)
+double calc_run_wear_potential(const std::vector<UpdateRecord>& records, const WearLawParams& law);
 
 // the interval of update number u (0-based)
 long update_interval(const WearOptions& options, int u);

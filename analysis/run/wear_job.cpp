@@ -33,6 +33,8 @@ namespace kneesim::run {
 namespace {
 
 constexpr double kM3ToMm3 = 1e9;
+// the wear potential [J] in the I/O unit N mm: k [mm^3/(N mm)] x potential [N mm] = volume [mm^3]
+constexpr double kJToNmm = 1e3;
 
 // the deformable insert's extra columns: von Mises and plastic strain, surface and subsurface
 io::Table make_wear_table(const std::vector<wear::UpdateRecord>& records, double density,
@@ -42,7 +44,8 @@ io::Table make_wear_table(const std::vector<wear::UpdateRecord>& records, double
                "mass_mg",          "max_depth_mm",      "medial_volume_mm3",
                "lateral_volume_mm3", "contact_area_mm2", "peak_pressure_MPa",
                "mean_peak_pressure_MPa", "ap_rom_mm",   "ie_rom_deg",
-               "refinements"};
+               "refinements", "stance_mean_pressure_MPa", "wear_potential_Nmm",
+               "sliding_distance_mm", "cross_shear_ratio"};
   if (solid) {
     for (const char* c : {"von_mises_max_surface_MPa", "von_mises_max_subsurface_MPa",
                           "plastic_strain_max_surface", "plastic_strain_max_subsurface"}) {
@@ -55,7 +58,8 @@ io::Table make_wear_table(const std::vector<wear::UpdateRecord>& records, double
         r.volume * kM3ToMm3 * density, r.max_depth * 1e3, r.medial_volume * kM3ToMm3,
         r.lateral_volume * kM3ToMm3, r.contact_area * 1e6, r.peak_pressure * 1e-6,
         r.mean_peak_pressure * 1e-6, r.ap_rom * 1e3, r.ie_rom * 180.0 / std::numbers::pi,
-        r.refinements};
+        r.refinements, r.stance_mean_pressure * 1e-6, r.wear_potential * kJToNmm,
+        r.sliding_distance * 1e3, r.cross_shear};
     if (solid) {
       row.insert(row.end(), {r.von_mises_surface * 1e-6, r.von_mises_subsurface * 1e-6,
                              r.plastic_strain_surface, r.plastic_strain_subsurface});
@@ -348,6 +352,8 @@ nlohmann::json run_wear_job(const WearJob& j) {
   summary["updates"] = static_cast<int>(result.records.size()) - 1;
   summary["seconds"] = seconds;
   summary["wear_factor_mm3_per_Nmm"] = mat.wear_factor_mm3_per_Nmm;
+  summary["wear_factor_source"] = mat.wear_factor_source;
+  summary["wear_factor_independent"] = mat.wear_factor_independent;
   summary["wear_law"] = j.wear_law;
   summary["wear_law_params"] = j.law_params;
   summary["density_g_per_cm3"] = mat.density_g_per_cm3;
@@ -379,6 +385,13 @@ nlohmann::json run_wear_job(const WearJob& j) {
   summary["mean_peak_pressure_MPa"] = first.mean_peak_pressure * 1e-6;
   summary["contact_area_mm2"] = first.contact_area * 1e6;
   summary["peak_pressure_MPa"] = first.peak_pressure * 1e-6;
+  // what does not depend on the wear factor: the pristine cycle's, and the potential of the
+  // whole run (k x wear_potential_run_Nmm = volume_depth_mm3; wear/wear_loop.h)
+  summary["stance_mean_pressure_MPa"] = first.stance_mean_pressure * 1e-6;
+  summary["sliding_distance_mm"] = first.sliding_distance * 1e3;
+  summary["cross_shear_ratio"] = first.cross_shear;
+  summary["wear_potential_Nmm"] = first.wear_potential * kJToNmm;
+  summary["wear_potential_run_Nmm"] = wear::calc_run_wear_potential(result.records, o.law) * kJToNmm;
   summary["ap_rom_mm"] = first.ap_rom * 1e3;
   summary["ie_rom_deg"] = first.ie_rom * 180.0 / std::numbers::pi;
   summary["final_ap_rom_mm"] = last.ap_rom * 1e3;

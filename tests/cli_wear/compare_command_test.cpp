@@ -35,7 +35,7 @@ TEST_CASE("kneesim compare killed mid-way: --resume finishes it with the uninter
   // one material at a time, so that uhmwpe has finished when peek's first checkpoint appears
   auto args = [](const fs::path& out, std::vector<std::string> extra = {}) {
     std::vector<std::string> a = {"compare", "--materials", "uhmwpe,peek", "--cycles", "1000000",
-                                  "--update-every", "250000", "--jobs", "1", "--quiet",
+                                  "--update-every", "250000", "--jobs", "1", "--quiet", "--no-break-even",
                                   "--set", "implant.edge_length_mm=2", "--out", out.string()};
     a.insert(a.end(), extra.begin(), extra.end());
     return a;

@@ -127,8 +127,8 @@ TEST_CASE("every rig preset runs end to end in run, wear and compare") {
 
     // kneesim compare: two materials, the UHMWPE row is the wear run's
     const Result cmp = run_kneesim(
-        with({"compare", "--quiet", "--materials", "uhmwpe,peek", "--cycles", "250000",
-              "--update-every", "250000", "--out", cmp_dir.string()},
+        with({"compare", "--quiet", "--no-break-even", "--materials", "uhmwpe,peek", "--cycles",
+              "250000", "--update-every", "250000", "--out", cmp_dir.string()},
              preset),
         tmp.path, "cmp");
     INFO("compare stderr: " << cmp.err);

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <mutex>
 
+#include "analysis/run/material_comparison.h"
 #include "analysis/run/wear_job.h"
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
@@ -29,6 +30,9 @@ struct CompareArgs {
   bool quiet = false;
   bool resume = false;
   bool no_plots = false;
+  bool no_break_even = false;
+  bool break_even = false;        // also with the deformable insert
+  std::string reference = "uhmwpe";
 };
 
 void run(const CompareArgs& a) {
@@ -52,7 +56,7 @@ void run(const CompareArgs& a) {
     // what defines this material's run: the config's text, the overrides, the material and
     // the schedule (a checkpoint or finished run of anything else is not resumed)
     std::ostringstream id;
-    id << "compare v2\n" << (a.config.empty() ? std::string() : io::read_file(a.config)) << "\n";
+    id << "compare v3\n" << (a.config.empty() ? std::string() : io::read_file(a.config)) << "\n";
     for (const auto& s : a.sets) id << s << "\n";
     id << m << " " << a.cycles << " " << a.update_every;
     job.identity_text = id.str();
@@ -62,7 +66,8 @@ void run(const CompareArgs& a) {
   // the folder holds this comparison only: a previous one's table, plots and the result
   // folders of materials not run now go (a folder with anything but wear outputs stays)
   for (const char* f : {"comparison.csv", "comparison.md", "comparison.json", "compare_wear.png",
-                        "compare_kinematics.png", "compare_contact.png"}) {
+                        "compare_kinematics.png", "compare_contact.png", "break_even.csv",
+                        "break_even_runs.csv", "compare_break_even.png"}) {
     fs::remove(fs::path(a.out) / f);
   }
   std::vector<fs::path> others;
@@ -84,8 +89,13 @@ void run(const CompareArgs& a) {
       run::run_wear_jobs(jobs, a.jobs, [&](size_t i, const nlohmann::json& r) {
         if (a.quiet) return;
         std::lock_guard<std::mutex> lock(print);
-        std::fprintf(stderr, "%s done: %.1f mm^3 in %.1f s\n", a.materials[i].c_str(),
-                     r["volume_mm3"].get<double>(), r["seconds"].get<double>());
+        const models::MaterialConfig& mat = jobs[i].config.material;
+        std::fprintf(stderr, "%s done: %.1f mm^3 in %.1f s%s\n", a.materials[i].c_str(),
+                     r["volume_mm3"].get<double>(), r["seconds"].get<double>(),
+                     mat.wear_factor_independent
+                         ? ""
+                         : " (wear factor not independent, so this volume is not a prediction: "
+                           "see the break-even ratio)");
       });
 
   io::Table t;
@@ -93,18 +103,15 @@ void run(const CompareArgs& a) {
   t.columns = {"volume_mm3",      "mass_mg",          "max_depth_mm",
                "wear_rate_mm3_per_Mc", "mean_peak_pressure_MPa", "peak_pressure_MPa",
                "ap_rom_mm",       "ie_rom_deg",        "elastic_modulus_MPa",
-               "wear_factor_mm3_per_Nmm", "friction", "dt_s", "seconds", "contact_area_mm2"};
+               "wear_factor_mm3_per_Nmm", "friction", "dt_s", "seconds", "contact_area_mm2",
+               "wear_factor_independent", "stance_mean_pressure_MPa", "sliding_distance_mm",
+               "cross_shear_ratio", "wear_potential_Nmm", "wear_potential_run_Nmm"};
   // the deformable insert's stress and plastic strain (every material runs the same insert)
   const std::vector<std::string> solid_keys = {
       "von_mises_max_surface_MPa", "von_mises_max_subsurface_MPa", "plastic_strain_max_surface",
       "plastic_strain_max_subsurface"};
   const bool solid = results.front().contains(solid_keys.front());
   if (solid) t.columns.insert(t.columns.end(), solid_keys.begin(), solid_keys.end());
-  std::string md = "| material | volume (mm³) | mass (mg) | max depth (mm) | mean peak pressure "
-                   "(MPa) | AP ROM (mm) | IE ROM (deg) |";
-  md += solid ? " contact area (mm²) | von Mises max surface / subsurface (MPa) | plastic "
-                "strain max surface / subsurface |\n|---|---|---|---|---|---|---|---|---|---|\n"
-              : "\n|---|---|---|---|---|---|---|\n";
   nlohmann::json all;
   for (size_t i = 0; i < jobs.size(); ++i) {
     const auto& r = results[i];
@@ -114,39 +121,85 @@ void run(const CompareArgs& a) {
         r["volume_mm3"], r["mass_mg"], r["max_depth_mm"], r["wear_rate_mm3_per_Mc"],
         r["mean_peak_pressure_MPa"], r["peak_pressure_MPa"], r["ap_rom_mm"], r["ie_rom_deg"],
         mat.elastic_modulus_MPa, mat.wear_factor_mm3_per_Nmm, r["friction"], r["dt_s"],
-        r["seconds"], r["contact_area_mm2"]};
+        r["seconds"], r["contact_area_mm2"], mat.wear_factor_independent ? 1.0 : 0.0,
+        r["stance_mean_pressure_MPa"], r["sliding_distance_mm"], r["cross_shear_ratio"],
+        r["wear_potential_Nmm"], r["wear_potential_run_Nmm"]};
     if (solid) {
       for (const std::string& k : solid_keys) row.push_back(r[k].get<double>());
     }
     t.add_row(row);
-    char line[256];
-    std::snprintf(line, sizeof line, "| %s | %.1f | %.1f | %.3f | %.1f | %.2f | %.2f |",
-                  a.materials[i].c_str(), r["volume_mm3"].get<double>(),
-                  r["mass_mg"].get<double>(), r["max_depth_mm"].get<double>(),
-                  r["mean_peak_pressure_MPa"].get<double>(), r["ap_rom_mm"].get<double>(),
-                  r["ie_rom_deg"].get<double>());
-    md += line;
-    if (solid) {
-      std::snprintf(line, sizeof line, " %.1f | %.1f / %.1f | %.4f / %.4f |",
-                    r["contact_area_mm2"].get<double>(),
-                    r["von_mises_max_surface_MPa"].get<double>(),
-                    r["von_mises_max_subsurface_MPa"].get<double>(),
-                    r["plastic_strain_max_surface"].get<double>(),
-                    r["plastic_strain_max_subsurface"].get<double>());
-      md += line;
-    }
-    md += "\n";
     all[a.materials[i]] = r;
+    all[a.materials[i]]["wear_factor_source"] = mat.wear_factor_source;
+    all[a.materials[i]]["wear_factor_independent"] = mat.wear_factor_independent;
+  }
+  // the break-even wear-factor ratios to the reference material (rigid insert by default: a
+  // deformable run costs minutes, and a solve needs several)
+  const auto ref = std::find(a.materials.begin(), a.materials.end(), a.reference);
+  const bool deformable = jobs.front().config.insert_kind == "deformable";
+  std::vector<run::MaterialBreakEven> break_evens;
+  std::vector<run::LiteratureBand> bands;
+  std::string skipped;
+  if (a.no_break_even) {
+    skipped = "break-even not computed (--no-break-even)";
+  } else if (ref == a.materials.end() || a.materials.size() < 2) {
+    skipped = "break-even not computed: it needs the reference material '" + a.reference +
+              "' (--reference) and another material";
+  } else if (deformable && !a.break_even) {
+    skipped = "break-even not computed for the deformable insert (each solve is several whole "
+              "runs of minutes each): pass --break-even to compute it";
+  } else {
+    if (!a.quiet) std::fprintf(stderr, "solving the break-even wear-factor ratios to %s...\n",
+                               a.reference.c_str());
+    bands = run::read_wear_literature(run::wear_literature_path());
+    run::BreakEvenSettings settings;
+    settings.workers = a.jobs;
+    break_evens = run::calc_break_evens(jobs, results, ref - a.materials.begin(), settings);
   }
   std::ostringstream head;
   head << "# kneesim compare\n\n" << a.cycles << " cycles, geometry update every "
        << a.update_every << " cycles; same implant, rig and gait for every material.\n\n";
+  std::string md = run::make_comparison_markdown(jobs, a.materials, results, break_evens,
+                                                 a.reference, bands);
+  if (!skipped.empty()) md += "\n" + skipped + ".\n";
   io::write_csv(fs::path(a.out) / "comparison.csv", t);
   io::write_file_atomic(fs::path(a.out) / "comparison.md", head.str() + md);
+  if (!break_evens.empty()) {
+    all["break_even"] = run::break_even_json(break_evens, a.reference,
+                                             results[ref - a.materials.begin()], bands);
+    io::Table be;
+    be.label_name = "material";
+    be.columns = {"break_even_volume_ratio", "break_even_max_depth_ratio", "own_ratio",
+                  "own_factor_independent", "volume_runs", "max_depth_runs"};
+    io::Table runs;
+    runs.label_name = "material";
+    runs.columns = {"ratio", "wear_factor_mm3_per_Nmm", "complete", "volume_mm3", "max_depth_mm",
+                    "cycles"};
+    const double k_ref = jobs[ref - a.materials.begin()].config.material.wear_factor_mm3_per_Nmm;
+    for (const run::MaterialBreakEven& b : break_evens) {
+      be.label_column.push_back(b.material);
+      be.add_row({b.volume.ratio, b.max_depth.ratio, b.own_ratio, b.own_independent ? 1.0 : 0.0,
+                  static_cast<double>(b.volume.runs), static_cast<double>(b.max_depth.runs)});
+      for (const run::RatioRun& r : b.runs) {
+        runs.label_column.push_back(b.material);
+        runs.add_row({r.ratio, r.ratio * k_ref, r.complete ? 1.0 : 0.0, r.volume_mm3,
+                      r.max_depth_mm, r.cycles});
+      }
+    }
+    io::write_csv(fs::path(a.out) / "break_even.csv", be);
+    io::write_csv(fs::path(a.out) / "break_even_runs.csv", runs);
+  } else {
+    all["break_even"] = skipped;
+  }
+  io::write_json(fs::path(a.out) / "comparison.json", all);
   std::vector<std::string> args = {a.out};
   for (const auto& m : a.materials) args.push_back(m);
-  if (!a.no_plots) io::run_plot("compare.py", args);
-  io::write_json(fs::path(a.out) / "comparison.json", all);
+  if (!a.no_plots) {
+    io::run_plot("compare.py", args);
+    if (!break_evens.empty()) {
+      io::run_plot("break_even.py", {(fs::path(a.out) / "comparison.json").string(),
+                                     (fs::path(a.out) / "compare_break_even.png").string()});
+    }
+  }
   if (!a.quiet) std::printf("%s%sresults in %s\n", head.str().c_str(), md.c_str(), a.out.c_str());
 }
 
@@ -160,8 +213,13 @@ void add_compare_command(CLI::App& app) {
       "peek, cfr-peek; 5 million cycles). Writes DIR/comparison.csv, DIR/comparison.md, "
       "DIR/comparison.json, plots (compare_wear.png, compare_kinematics.png, "
       "compare_contact.png) and each material's wear outputs in DIR/<material>/, each "
-      "checkpointed at every update (--resume continues a killed comparison). With --set "
-      "insert=deformable the table adds the von Mises and plastic-strain maxima.");
+      "checkpointed at every update (--resume continues a killed comparison). Per material: the "
+      "figures that do not depend on the wear factor (pressures, area, sliding distance, "
+      "cross-shear, wear potential; with --set insert=deformable the von Mises and "
+      "plastic-strain maxima), the wear, whether the wear factor is independent "
+      "(models/materials.toml), and the break-even wear-factor ratio to the reference material "
+      "for equal volume and equal maximum depth (break_even.csv, compare_break_even.png with the "
+      "published ranges).");
   cmd->add_option("config", args->config, "TOML config file")->check(CLI::ExistingFile);
   cmd->add_option("--materials", args->materials, "comma-separated material names")
       ->delimiter(',')
@@ -178,6 +236,13 @@ void add_compare_command(CLI::App& app) {
   cmd->add_flag("--no-plots", args->no_plots,
                 "skip the PNG plots (the CSV, JSON and Markdown results are the same)");
   cmd->add_flag("--quiet", args->quiet, "no per-material lines or table");
+  cmd->add_flag("--no-break-even", args->no_break_even,
+                "skip the break-even wear-factor ratios (each is several whole wear runs)");
+  cmd->add_flag("--break-even", args->break_even,
+                "compute the break-even ratios also for the deformable insert (minutes per run)");
+  cmd->add_option("--reference", args->reference,
+                  "material the break-even wear-factor ratios refer to")
+      ->capture_default_str();
   cmd->add_flag("--resume", args->resume,
                 "continue a killed comparison: each material from its DIR/<material>/"
                 "wear.checkpoint, a material that had finished from its summary.json");

@@ -1,0 +1,28 @@
+"""The break-even wear-factor ratio to UHMWPE of PEEK and CFR-PEEK at 5 Mc on the built-in
+implant and the stanmore rig (kneesim compare: whole wear runs with geometry updates, solved to
+0.1 %), set beside the materials study's
+implied ratio (its own volume ratios, not independent) and the published ranges
+(models/wear_literature.toml). The break-even depends on the contact model only; no wear factor
+of PEEK or CFR-PEEK enters it."""
+TITLE = "Materials: the break-even wear-factor ratio"
+LONG = True
+
+def run(v):
+    for name, extra in (("archard", []),):
+        d = v.kneesim(f"compare_{name}", ["compare", "--materials", "uhmwpe,peek,cfr-peek",
+                                          "--no-plots", "--quiet"] + extra)
+        be = {r["material"]: r for r in v.csv(d, "break_even.csv")}
+        for m, k in (("peek", "peek"), ("cfr-peek", "cfrpeek")):
+            v.figure(f"{name}_{k}_volume", be[m]["break_even_volume_ratio"], "")
+            v.figure(f"{name}_{k}_depth", be[m]["break_even_max_depth_ratio"], "")
+            v.figure(f"{k}_own", be[m]["own_ratio"], "")
+
+
+TABLE = """
+| quantity | PEEK | CFR-PEEK |
+|---|---|---|
+| break-even ratio, equal volume, constant factors | {archard_peek_volume:.3f} | {archard_cfrpeek_volume:.3f} |
+| break-even ratio, equal max depth, constant factors | {archard_peek_depth:.3f} | {archard_cfrpeek_depth:.3f} |
+| the materials study's implied ratio (back-calculated from its volumes) | {peek_own:.2f} | {cfrpeek_own:.3f} |
+| published ranges of the ratio | ≥ 1 (Brockett 2016); 30-100 (Brockett 2017) | 30-100 (Brockett 2017, knee simulator, CoCr); 0.01-0.1 below 6 MPa (Evans 2014, ceramic); ≤ 1 (Scholes & Unsworth 2009) |
+"""

@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 
+#include "analysis/run/fe_export.h"
 #include "analysis/run/solid_outputs.h"
 #include "engine/io/json_out.h"
 #include "engine/io/output_folder.h"
@@ -26,7 +27,8 @@ void clear_outputs(const std::filesystem::path& dir) {
     const std::string name = e.path().filename().string();
     if (name == "kinematics.csv" || name == "summary.json" || name == "kinematics.png" ||
         name == "kinematics.partial.csv" || name == "measured_kinematics.csv" ||
-        name == "summary.failed.json" || name.rfind("pressure_", 0) == 0 ||
+        name == "summary.failed.json" || name == "fe_export.json" ||
+        name.rfind("pressure_", 0) == 0 ||
         name.rfind("insert_stress", 0) == 0) {
       fs::remove(e.path());
     }
@@ -111,12 +113,24 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   // deformable insert: stress maxima and energies over the last cycle (reset by a retry)
   const bool solid = !built.model.insert_solid.empty();
   std::optional<SolidCycleTracker> tracker;
+  std::optional<FeExportRecorder> fe_export;
+  if (job.fe_export) {
+    fe_export.emplace(built.model, job.fe_export_pcts.empty()
+                                       ? find_heel_strike_and_load_peaks(built.model.gait)
+                                       : job.fe_export_pcts);
+  }
   std::function<void()> reset_tracker;
   if (solid) {
-    reset_tracker = [&tracker, &built] { tracker.emplace(built.model); };
+    reset_tracker = [&tracker, &fe_export, &built] {
+      tracker.emplace(built.model);
+      if (fe_export) fe_export->clear();
+    };
     reset_tracker();
-    options.observer = [&tracker](const engine::Model&, const engine::State&,
-                                  const engine::Data& d) { tracker->observe(d); };
+    options.observer = [&tracker, &fe_export](const engine::Model& m, const engine::State& s,
+                                              const engine::Data& d) {
+      tracker->observe(d);
+      if (fe_export) fe_export->observe(m, s, d);
+    };
   }
   const auto t0 = std::chrono::steady_clock::now();
   const double dt_estimated = built.model.dt;
@@ -185,6 +199,12 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
     }
   }
   if (solid) write_solid_stress_vtu(out / "insert_stress.vtu", built.model, state, data, *tracker);
+  if (fe_export) {
+    if (!fe_export->complete()) {
+      throw std::logic_error("FE export: an instant of the last cycle was not reached");
+    }
+    io::write_json(out / "fe_export.json", make_fe_export(built, config, *fe_export));
+  }
   GaitRunReport report;
   report.figures = calc_cycle_figures(result.frames);
   report.seconds = seconds;

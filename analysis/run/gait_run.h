@@ -26,6 +26,11 @@ struct GaitRunJob {
   std::filesystem::path out;    // output folder
   bool quiet = false;           // no progress bar
   bool plots = true;            // out/kinematics.png
+  // deformable insert: export the contact problem at gait instants of the last cycle to
+  // out/fe_export.json (analysis/run/fe_export.h), at fe_export_pcts or, when that is empty,
+  // at heel strike and the two highest axial-load peaks of the gait
+  bool fe_export = false;
+  std::vector<double> fe_export_pcts;
   // called once the Model is built, before any step (e.g. to describe it on the terminal)
   std::function<void(const models::BuiltModel&)> on_built;
 };

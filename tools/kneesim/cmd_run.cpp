@@ -18,6 +18,8 @@ struct RunArgs {
   std::string measured;
   bool quiet = false;
   bool no_plots = false;
+  bool export_fe = false;
+  std::vector<double> export_fe_pcts;
 };
 
 void run(const RunArgs& a) {
@@ -29,6 +31,8 @@ void run(const RunArgs& a) {
   job.out = a.out;
   job.quiet = a.quiet;
   job.plots = !a.no_plots;
+  job.fe_export = a.export_fe || !a.export_fe_pcts.empty();
+  job.fe_export_pcts = a.export_fe_pcts;
   const int cycles = job.config.cycles;
   if (!a.quiet) {
     job.on_built = [cycles](const models::BuiltModel& built) {
@@ -86,6 +90,16 @@ void add_run_command(CLI::App& app) {
                   "measured kinematics (CSV gait_pct,ap_mm,ie_deg or .sto) to overlay in the plot");
   cmd->add_flag("--no-plots", args->no_plots,
                 "skip DIR/kinematics.png (the CSV, JSON and VTK results are the same)");
+  cmd->add_flag("--export-fe", args->export_fe,
+                "deformable insert: write DIR/fe_export.json, the insert's hex mesh, material, "
+                "the femoral mesh and per instant the femur's pose with kneesim's node pressures "
+                "and element stresses, for an independent FE code "
+                "(tools/scripts/ccx_crosscheck.py); instants: heel strike and the two highest "
+                "axial-load peaks of the gait, or --export-fe-pcts");
+  cmd->add_option("--export-fe-pcts", args->export_fe_pcts,
+                  "gait % of the last cycle to export (implies --export-fe), each in [0, 100)")
+      ->delimiter(',')
+      ->check(CLI::Range(0.0, 99.999));
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
   cmd->callback([args] { run(*args); });
 }

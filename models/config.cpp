@@ -218,6 +218,12 @@ void register_material(Registry& r, const std::string& prefix, MaterialConfig& m
     "where the wear factor comes from (a citation; required wherever a material table sets the factor)");
   r.flag(prefix + "wear_factor_independent", m.wear_factor_independent,
     "the wear factor is independent of what kneesim is compared with (false: its wear volumes are not predictions)");
+  r.number(prefix + "wear_pressure_exponent", m.wear_pressure_exponent, -3.0, 3.0,
+    "n of the material's pressure-dependent wear factor k = k_ref (p / p_ref)^n (wear law material_pressure)");
+  r.number(prefix + "wear_reference_pressure_MPa", m.wear_reference_pressure_MPa, 0.01, 1000.0,
+    "p_ref at which wear_factor_mm3_per_Nmm applies (wear law material_pressure)");
+  r.text(prefix + "wear_pressure_source", m.wear_pressure_source,
+    "where the direction and magnitude of wear_pressure_exponent come from");
 }
 
 Registry make_registry(Config& c) {
@@ -517,7 +523,8 @@ std::map<std::string, MaterialConfig> take_material_tables(std::map<std::string,
       throw InputError(it->second.origin + ": unknown key '" + it->first + "' (allowed: "
                        "elastic_modulus_MPa, poisson, yield_MPa, density_g_per_cm3, friction, "
                        "wear_factor_mm3_per_Nmm, wear_factor_source, wear_factor_independent, "
-                       "source)");
+                       "wear_pressure_exponent, wear_reference_pressure_MPa, "
+                       "wear_pressure_source, source)");
     }
     f->assign(it->second.value, it->second.origin + " [" + it->first + "]");
     if (key == "wear_factor_mm3_per_Nmm") factor_origin[name] = it->second.origin;

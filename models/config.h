@@ -32,6 +32,11 @@ struct MaterialConfig {
   // override without a source gets the override as its source and counts as not independent
   std::string wear_factor_source = "Pal 2008 (conventional UHMWPE against CoCr)";
   bool wear_factor_independent = true;
+  // the material's own pressure dependence of its wear factor, k = k_ref (p / p_ref)^n, used by
+  // the wear law "material_pressure": k_ref is wear_factor_mm3_per_Nmm, the factor at p_ref
+  double wear_pressure_exponent = 0.0;        // n [-], either sign (UHMWPE's falls with p)
+  double wear_reference_pressure_MPa = 10.0;  // p_ref [MPa]
+  std::string wear_pressure_source;           // the direction's citation and the magnitude's
 };
 
 struct Config {

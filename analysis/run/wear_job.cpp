@@ -141,7 +141,9 @@ static wear::WearLawParams make_wear_law(const WearJob& j) {
   auto bad = [](const std::string& s) { throw InputError("--law-param " + s); };
   if (j.wear_law == "archard") {
     law.law = wear::WearLaw::kArchard;
-  } else if (j.wear_law == "pressure_dependent_wear") {
+  } else if (j.wear_law == "pressure_dependent_wear" || j.wear_law == "material_pressure") {
+    // material_pressure: the same kernel with each material's own exponent and p_ref
+    // (make_wear_options), k = k_ref (p / p_ref)^n with alpha = -n
     law.law = wear::WearLaw::kPressureDependent;
   } else if (j.wear_law == "cross_shear") {
     law.law = wear::WearLaw::kCrossShear;
@@ -151,7 +153,8 @@ static wear::WearLawParams make_wear_law(const WearJob& j) {
     law.law = wear::WearLaw::kIncubation;
   } else {
     throw InputError("--wear-law = '" + j.wear_law + "' is not allowed; allowed: archard, "
-                     "pressure_dependent_wear, cross_shear, running_in, incubation");
+                     "pressure_dependent_wear, material_pressure, cross_shear, running_in, "
+                     "incubation");
   }
   for (const std::string& text : j.law_params) {
     const size_t eq = text.find('=');
@@ -160,6 +163,10 @@ static wear::WearLawParams make_wear_law(const WearJob& j) {
     const double v = eq == std::string::npos ? NAN : std::strtod(text.c_str() + eq + 1, &end);
     if (eq == std::string::npos || end == text.c_str() + eq + 1 || *end != '\0' || !std::isfinite(v)) {
       bad("'" + text + "' is not name=number");
+    }
+    if (j.wear_law == "material_pressure") {
+      bad("'" + text + "': material_pressure takes its exponent and p_ref from the material "
+          "(material.wear_pressure_exponent, material.wear_reference_pressure_MPa)");
     }
     if (law.law == wear::WearLaw::kPressureDependent && name == "alpha") {
       if (v < -3.0 || v > 4.0) bad("alpha = " + text.substr(eq + 1) + " is outside [-3, 4]");
@@ -278,6 +285,10 @@ wear::WearOptions make_wear_options(const WearJob& j, const models::BuiltModel& 
   o.law = make_wear_law(j);
   o.law.wear_factor = built.material.wear_factor_mm3_per_Nmm * wear::kWearFactorSI;
   o.law.friction = built.model.contact.friction;
+  if (j.wear_law == "material_pressure") {
+    o.law.alpha = -built.material.wear_pressure_exponent;
+    o.law.p_ref = built.material.wear_reference_pressure_MPa * 1e6;
+  }
   return o;
 }
 
@@ -356,6 +367,11 @@ nlohmann::json run_wear_job(const WearJob& j) {
   summary["wear_factor_independent"] = mat.wear_factor_independent;
   summary["wear_law"] = j.wear_law;
   summary["wear_law_params"] = j.law_params;
+  if (j.wear_law == "material_pressure") {
+    summary["wear_pressure_exponent"] = mat.wear_pressure_exponent;
+    summary["wear_reference_pressure_MPa"] = mat.wear_reference_pressure_MPa;
+    summary["wear_pressure_source"] = mat.wear_pressure_source;
+  }
   summary["density_g_per_cm3"] = mat.density_g_per_cm3;
   summary["sarkar_factor"] = wear::sarkar_factor(built.model.contact.friction);
   if (result.resumed_from_update >= 0) summary["resumed_after_update"] = result.resumed_from_update;

@@ -33,6 +33,7 @@ struct CompareArgs {
   bool no_break_even = false;
   bool break_even = false;        // also with the deformable insert
   std::string reference = "uhmwpe";
+  std::string wear_law = "archard";
 };
 
 void run(const CompareArgs& a) {
@@ -53,12 +54,13 @@ void run(const CompareArgs& a) {
     job.depth_maps = false;
     job.plots = !a.no_plots;
     job.resume = a.resume;
+    job.wear_law = a.wear_law;
     // what defines this material's run: the config's text, the overrides, the material and
     // the schedule (a checkpoint or finished run of anything else is not resumed)
     std::ostringstream id;
     id << "compare v3\n" << (a.config.empty() ? std::string() : io::read_file(a.config)) << "\n";
     for (const auto& s : a.sets) id << s << "\n";
-    id << m << " " << a.cycles << " " << a.update_every;
+    id << m << " " << a.cycles << " " << a.update_every << " " << a.wear_law;
     job.identity_text = id.str();
     run::check_wear_job(job);
     jobs.push_back(std::move(job));
@@ -157,7 +159,19 @@ void run(const CompareArgs& a) {
   }
   std::ostringstream head;
   head << "# kneesim compare\n\n" << a.cycles << " cycles, geometry update every "
-       << a.update_every << " cycles; same implant, rig and gait for every material.\n\n";
+       << a.update_every << " cycles; same implant, rig and gait for every material; wear law "
+       << a.wear_law << ".\n\n";
+  if (a.wear_law == "material_pressure") {
+    head << "Each material's wear factor depends on the contact pressure, k = k_ref (p / p_ref)^n:\n\n";
+    for (const run::WearJob& j : jobs) {
+      const models::MaterialConfig& m = j.config.material;
+      char line[96];
+      std::snprintf(line, sizeof line, "- %s: n = %g, p_ref = %g MPa: ", m.name.c_str(),
+                    m.wear_pressure_exponent, m.wear_reference_pressure_MPa);
+      head << line << m.wear_pressure_source << "\n";
+    }
+    head << "\n";
+  }
   std::string md = run::make_comparison_markdown(jobs, a.materials, results, break_evens,
                                                  a.reference, bands);
   if (!skipped.empty()) md += "\n" + skipped + ".\n";
@@ -240,6 +254,12 @@ void add_compare_command(CLI::App& app) {
                 "skip the break-even wear-factor ratios (each is several whole wear runs)");
   cmd->add_flag("--break-even", args->break_even,
                 "compute the break-even ratios also for the deformable insert (minutes per run)");
+  cmd->add_option("--wear-law", args->wear_law,
+                  "wear law of every material: archard, or material_pressure (k = k_ref "
+                  "(p / p_ref)^n with each material's own n and p_ref, models/materials.toml; the "
+                  "break-even ratio is then that of the factors at p_ref)")
+      ->check(CLI::IsMember({"archard", "material_pressure"}))
+      ->capture_default_str();
   cmd->add_option("--reference", args->reference,
                   "material the break-even wear-factor ratios refer to")
       ->capture_default_str();

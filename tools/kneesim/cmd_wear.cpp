@@ -157,6 +157,7 @@ void add_wear_command(CLI::App& app) {
       ->delimiter(',');
   cmd->add_option("--wear-law", args->wear_law,
                   "wear law: archard, pressure_dependent_wear (k (p / p_ref)^-alpha), "
+                  "material_pressure (k (p / p_ref)^n with the material's own n and p_ref), "
                   "cross_shear (k (1 + beta CS)), running_in (k (1 + a exp(-N / N_r))) or "
                   "incubation (k (1 - exp(-N / N_i))), the extensions `kneesim diagnose "
                   "knee-wear` fits")

@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 
+#include "analysis/report/run_report.h"
 #include "analysis/run/fe_export.h"
 #include "analysis/run/solid_outputs.h"
 #include "engine/io/json_out.h"
@@ -27,7 +28,7 @@ void clear_outputs(const std::filesystem::path& dir) {
     const std::string name = e.path().filename().string();
     if (name == "kinematics.csv" || name == "summary.json" || name == "kinematics.png" ||
         name == "kinematics.partial.csv" || name == "measured_kinematics.csv" ||
-        name == "summary.failed.json" || name == "fe_export.json" ||
+        name == "summary.failed.json" || name == "fe_export.json" || name == "report.html" ||
         name.rfind("pressure_", 0) == 0 ||
         name.rfind("insert_stress", 0) == 0) {
       fs::remove(e.path());
@@ -119,17 +120,23 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
                                        ? find_heel_strike_and_load_peaks(built.model.gait)
                                        : job.fe_export_pcts);
   }
+  // the report's 3D view: pressure and femoral pose every 2 % of the last cycle
+  std::optional<report::SceneRecorder> scene;
+  if (job.report) scene.emplace();
   std::function<void()> reset_tracker;
-  if (solid) {
-    reset_tracker = [&tracker, &fe_export, &built] {
-      tracker.emplace(built.model);
+  if (solid || scene) {
+    reset_tracker = [&tracker, &fe_export, &scene, &built, solid] {
+      if (solid) tracker.emplace(built.model);
       if (fe_export) fe_export->clear();
+      if (scene) scene->clear();
     };
     reset_tracker();
-    options.observer = [&tracker, &fe_export](const engine::Model& m, const engine::State& s,
-                                              const engine::Data& d) {
-      tracker->observe(d);
+    options.observer = [&tracker, &fe_export, &scene](const engine::Model& m,
+                                                      const engine::State& s,
+                                                      const engine::Data& d) {
+      if (tracker) tracker->observe(d);
       if (fe_export) fe_export->observe(m, s, d);
+      if (scene) scene->observe(m, s, d);
     };
   }
   const auto t0 = std::chrono::steady_clock::now();
@@ -219,7 +226,9 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
     plot_args.push_back((out / "measured_kinematics.csv").string());
   }
   if (job.plots) io::run_plot("kinematics.py", plot_args);
-  io::write_json(out / "summary.json", summary);  // last: its presence marks a complete run
+  io::write_json(out / "summary.json", summary);  // its presence marks a complete run
+  // the report reads the files just written, so it shows what they say
+  if (job.report) report::write_run_report(out, *job.report, scene->make_scene(built));
   report.summary = std::move(summary);
   return report;
 }

@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "analysis/report/provenance.h"
 #include "analysis/run/run_outputs.h"
 #include "engine/io/table.h"
 #include "engine/simulate.h"
@@ -31,6 +33,8 @@ struct GaitRunJob {
   // at heel strike and the two highest axial-load peaks of the gait
   bool fe_export = false;
   std::vector<double> fe_export_pcts;
+  // writes out/report.html (analysis/report/run_report.h) with this provenance when set
+  std::optional<report::Provenance> report;
   // called once the Model is built, before any step (e.g. to describe it on the terminal)
   std::function<void(const models::BuiltModel&)> on_built;
 };

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "analysis/report/provenance.h"
 #include "analysis/run/gait_run.h"
 #include "tools/kneesim/commands.h"
 
@@ -18,6 +19,7 @@ struct RunArgs {
   std::string measured;
   bool quiet = false;
   bool no_plots = false;
+  bool no_report = false;
   bool export_fe = false;
   std::vector<double> export_fe_pcts;
 };
@@ -31,6 +33,7 @@ void run(const RunArgs& a) {
   job.out = a.out;
   job.quiet = a.quiet;
   job.plots = !a.no_plots;
+  if (!a.no_report) job.report = report::make_provenance(a.config, a.sets, job.config);
   job.fe_export = a.export_fe || !a.export_fe_pcts.empty();
   job.fe_export_pcts = a.export_fe_pcts;
   const int cycles = job.config.cycles;
@@ -72,7 +75,9 @@ void add_run_command(CLI::App& app) {
       "Simulate gait cycles of the force-controlled rig (default: built-in generic TKR, "
       "stanmore rig, ISO 14243-1-shaped gait, UHMWPE insert). Writes DIR/kinematics.csv (one "
       "row per 1 % of the last cycle), DIR/summary.json, DIR/pressure_<pct>pct.vtp (ParaView) "
-      "and DIR/kinematics.png (unless --no-plots). With --set insert=deformable the insert is a "
+      "DIR/kinematics.png (unless --no-plots) and DIR/report.html (unless --no-report: key "
+      "numbers, a 3D view of insert and femoral component coloured by contact pressure over the "
+      "cycle, the plots and the provenance, one file that opens offline). With --set insert=deformable the insert is a "
       "hex8 solid (docs/deformable.md): the pressure maps carry node pressures and element stresses, "
       "DIR/insert_stress.vtu the von Mises maximum over the cycle and the plastic strain per "
       "element, summary.json the surface/subsurface maxima and the kinetic/internal energy "
@@ -90,6 +95,9 @@ void add_run_command(CLI::App& app) {
                   "measured kinematics (CSV gait_pct,ap_mm,ie_deg or .sto) to overlay in the plot");
   cmd->add_flag("--no-plots", args->no_plots,
                 "skip DIR/kinematics.png (the CSV, JSON and VTK results are the same)");
+  cmd->add_flag("--no-report", args->no_report,
+                "skip DIR/report.html (one self-contained page: key numbers, 3D pressure view, "
+                "plots, provenance)");
   cmd->add_flag("--export-fe", args->export_fe,
                 "deformable insert: write DIR/fe_export.json, the insert's hex mesh, material, "
                 "the femoral mesh and per instant the femur's pose with kneesim's node pressures "

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "analysis/report/provenance.h"
 #include "engine/errors.h"
 #include "tools/kneesim/commands.h"
 
@@ -16,7 +17,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.failure_message(
       [](const CLI::App*, const CLI::Error& e) { return "error: " + std::string(e.what()) + "\n"; });
-  app.set_version_flag("--version", "kneesim 0.1.0");
+  app.set_version_flag("--version", kneesim::report::kVersion);
+  kneesim::report::set_command_line(argc, argv);
   kneesim::cli::add_run_command(app);
   kneesim::cli::add_particles_command(app);
   kneesim::cli::add_wear_command(app);

@@ -7,9 +7,10 @@ cd "$(dirname "$0")/../.."
 packages=(build-essential cmake libeigen3-dev libsundials-dev libfcl-dev libccd-dev
   libassimp-dev doctest-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libopenmpi-dev openmpi-bin python3-matplotlib
-  calculix-ccx chromium libjs-three)
+  calculix-ccx chromium libjs-three libssl-dev)
 # calculix-ccx: the independent FE cross-check of the deformable insert; chromium: the report's
-# browser test; libjs-three: the report's 3D view (inlined, nothing fetched at view time)
+# browser test; libjs-three: the report's 3D view (inlined, nothing fetched at view time);
+# libssl-dev: SHA-256 of the input files in the report's provenance
 packages_only=0
 if [ "${1:-}" = "--packages-only" ]; then
   packages_only=1

@@ -81,7 +81,7 @@ std::string svg_line_plot(const PlotSpec& spec) {
   if (spec.y_from_zero) ylo = std::min(0.0, ylo);
   const std::vector<double> xt = nice_ticks(xlo, xhi), yt = nice_ticks(ylo, yhi);
   const double x0 = xt.front(), x1 = xt.back(), y0 = yt.front(), y1 = yt.back();
-  const double left = 62, right = 12, top = 26, bottom = 42;
+  const double left = 62, right = 12, top = spec.series.size() > 1 ? 40 : 26, bottom = 42;
   const double W = spec.width, H = spec.height, pw = W - left - right, ph = H - top - bottom;
   auto X = [&](double x) { return left + (x - x0) / (x1 - x0) * pw; };
   auto Y = [&](double y) { return top + (1.0 - (y - y0) / (y1 - y0)) * ph; };
@@ -112,7 +112,7 @@ std::string svg_line_plot(const PlotSpec& spec) {
        num(top + ph / 2) + ") rotate(-90)\">" + html_escape(spec.y_label) + "</text>\n";
   // series
   int k = 0;
-  double legend_y = top + 14;
+  double legend_x = left;
   for (const PlotSeries& s : spec.series) {
     const std::string colour = s.colour.empty() ? kPalette[k % 8] : s.colour;
     ++k;
@@ -130,17 +130,13 @@ std::string svg_line_plot(const PlotSpec& spec) {
          (s.dashed ? " stroke-dasharray=\"5,3\"" : "") + " points=\"" + pts + "\"><title>" +
          html_escape(s.name) + "</title></polyline>" + dots + "\n";
     if (spec.series.size() > 1) {
-      const double lx = left + pw - 150;
-      if (legend_y == top + 14) {
-        o += "<rect x=\"" + num(lx - 4) + "\" y=\"" + num(top + 3) + "\" width=\"150\" height=\"" +
-             num(14.0 * spec.series.size() + 4) + "\" fill=\"#fff\" fill-opacity=\"0.85\"/>";
-      }
-      o += "<line x1=\"" + num(lx) + "\" x2=\"" + num(lx + 18) + "\" y1=\"" + num(legend_y - 4) +
-           "\" y2=\"" + num(legend_y - 4) + "\" stroke=\"" + colour + "\" stroke-width=\"2\"" +
-           (s.dashed ? " stroke-dasharray=\"5,3\"" : "") + "/>";
-      o += "<text class=\"legend\" x=\"" + num(lx + 22) + "\" y=\"" + num(legend_y) + "\">" +
+      // legend in a row above the frame, so it never hides a curve
+      o += "<line x1=\"" + num(legend_x) + "\" x2=\"" + num(legend_x + 16) + "\" y1=\"" +
+           num(top - 8) + "\" y2=\"" + num(top - 8) + "\" stroke=\"" + colour +
+           "\" stroke-width=\"2\"" + (s.dashed ? " stroke-dasharray=\"5,3\"" : "") + "/>";
+      o += "<text class=\"legend\" x=\"" + num(legend_x + 19) + "\" y=\"" + num(top - 4) + "\">" +
            html_escape(s.name) + "</text>\n";
-      legend_y += 14;
+      legend_x += 30 + 6.2 * static_cast<double>(s.name.size());
     }
   }
   o += "</svg>\n";

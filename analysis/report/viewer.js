@@ -116,8 +116,9 @@
     function update() {
       var k = +slider.value, fi = +fieldSel.value || 0, f = S.fields[fi];
       var step = S.step_values[k];
-      document.getElementById('kneesim-step').textContent =
-        (Math.round(step * 100) / 100) + (S.step_unit ? ' ' + S.step_unit : '');
+      var shown = Math.abs(step) >= 10000 ? step.toLocaleString('en-US').replace(/,/g, '\u2009')
+                                          : String(Math.round(step * 100) / 100);
+      document.getElementById('kneesim-step').textContent = shown + (S.step_unit ? ' ' + S.step_unit : '');
       if (f) {
         var q = fieldValues[fi], faces = fieldFaces[fi], n = f.face_count, off = k * n;
         for (var i = 0; i < colours.length; i += 3) {

@@ -19,6 +19,7 @@
 #include "engine/io/json_out.h"
 #include "engine/io/output_folder.h"
 #include "engine/io/plot.h"
+#include "analysis/report/wear_report.h"
 #include "engine/io/progress.h"
 #include "engine/io/table.h"
 #include "engine/io/vtp.h"
@@ -125,6 +126,7 @@ bool clear_wear_outputs(const std::filesystem::path& dir) {
     const std::string name = e.path().filename().string();
     if (name == "wear.csv" || name == "summary.json" || name == "wear.png" ||
         name == "depth_map.png" || name == "final_depth.csv" || name == "wear.checkpoint" ||
+        name == "report.html" ||
         name == "summary.failed.json" || name == "wear.partial.csv" ||
         name == "kinematics.csv" || name == "insert_stress.vtu" || name == "wear_surface.vtp" ||
         name.rfind("wear_depth_", 0) == 0) {
@@ -342,8 +344,11 @@ nlohmann::json run_wear_job(const WearJob& j) {
   o.identity = identity;
   io::ProgressBar bar("wear " + mat.name);
   if (!j.quiet) o.progress = [&bar](double f) { bar.update(f); };
+  report::WearSceneRecorder scene;  // the report's depth per update
+  const bool want_scene = j.report || j.scene_out;
   o.on_update = [&](const std::vector<wear::UpdateRecord>& records,
                     const std::vector<double>& depth) {
+    if (want_scene) scene.add(records.back().cycles, depth);
     io::write_csv(j.out / "wear.csv", make_wear_table(records, density_mg_per_mm3, solid));
     if (j.depth_maps) {
       char name[64];
@@ -465,6 +470,12 @@ nlohmann::json run_wear_job(const WearJob& j) {
   fs::remove(j.out / "wear.partial.csv");
   io::write_json(j.out / "summary.json", summary);
   fs::remove(o.checkpoint);  // complete: nothing to resume
+  if (want_scene) {
+    // the report reads the files just written, so it shows what they say
+    report::Scene3D s = scene.make_scene(built, result.frames, mat.name);
+    if (j.scene_out) *j.scene_out = s;
+    if (j.report) report::write_wear_report(j.out, *j.report, std::move(s));
+  }
   return summary;
 }
 

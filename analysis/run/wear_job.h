@@ -5,10 +5,13 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "analysis/report/provenance.h"
+#include "analysis/report/scene3d.h"
 #include "models/build_model.h"
 #include "models/config.h"
 #include "wear/wear_loop.h"
@@ -33,6 +36,10 @@ struct WearJob {
   // (beta [-])
   std::string wear_law = "archard";
   std::vector<std::string> law_params;  // "name=value" in I/O units
+  // writes out/report.html (analysis/report/wear_report.h) with this provenance when set
+  std::optional<report::Provenance> report;
+  // receives the report's 3D scene (wear depth per update) when set (compare's report)
+  report::Scene3D* scene_out = nullptr;
 };
 
 // runs the job; returns the summary written to out/summary.json; throws InputError for bad

@@ -11,7 +11,8 @@ with `chromium --dump-dom` (the page renders, moves its slider and writes what i
     above 50 (a uniform canvas gives 0; the default run's view gives about 1000);
   - moving the slider to the step whose field maximum differs most changes > 1 % of the pixels;
   - every number the page shows equals the value at its JSON pointer in DIR/summary.json, to
-    the decimals shown (|shown - value x scale| <= half a unit of the last digit);
+    the decimals shown (|shown - value x scale| <= half a unit of the last digit; compare:
+    DIR/comparison.json);
   - the page fetched nothing (the browser's resource timing list is empty), has no element
     that loads a file, and is under 8 MB.
 Exit 77 (ctest: skipped) with a reason when Chromium is not installed.
@@ -37,7 +38,14 @@ CHROMIUM_FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic
 # name -> (kneesim arguments after the command's output folder is appended)
 CASES = {
     "run": ["run", "--no-plots"],
+    # four geometry updates: the slider has five steps (new insert and four worn)
+    "wear": ["wear", "--cycles", "1000000", "--update-every", "250000", "--no-plots"],
+    "compare": ["compare", "--cycles", "500000", "--update-every", "250000", "--no-plots",
+                "--no-break-even"],
 }
+
+# the file whose numbers the page shows (summary.json unless named here)
+SUMMARY = {"compare": "comparison.json"}
 
 
 def find_chromium():
@@ -139,7 +147,8 @@ def check_case(name, args, opts, browser):
     for ref in re.findall(r"<(?:script|img|link|iframe|source)\b[^>]*\b(?:src|href)\s*=[^>]*>",
                           html):
         failures.append("%s: the page loads %s (must be self-contained)" % (name, ref))
-    summary = json.load(open(os.path.join(out, "summary.json")))
+    summary_name = SUMMARY.get(name, "summary.json")
+    summary = json.load(open(os.path.join(out, summary_name)))
 
     url = "file://" + os.path.abspath(page)
     d = chromium(browser, ["--enable-logging=stderr", "--v=0", "--window-size=1280,1000",
@@ -166,7 +175,9 @@ def check_case(name, args, opts, browser):
             if var_page <= 50:
                 failures.append("%s: the canvas is blank (variance %.1f)" % (name, var_page))
             shot = os.path.join(out, "report_screenshot.png")
-            s = chromium(browser, ["--window-size=1280,1000", "--screenshot=" + shot, url])
+            rect = check["canvas"]["rect"]
+            height = max(1000, int(rect[1] + rect[3] + 40))  # the whole canvas in the picture
+            s = chromium(browser, ["--window-size=1280,%d" % height, "--screenshot=" + shot, url])
             if not os.path.exists(shot):
                 failures.append("%s: no screenshot (chromium exit %d)" % (name, s.returncode))
             else:
@@ -192,14 +203,15 @@ def check_case(name, args, opts, browser):
         try:
             value = float(lookup(summary, n["key"])) * n["scale"]
         except (KeyError, IndexError, ValueError, TypeError):
-            failures.append("%s: shown number %s is not in summary.json" % (name, n["key"]))
+            failures.append("%s: shown number %s is not in %s" % (name, n["key"], summary_name))
             continue
         text = n["text"].strip()
         decimals = len(text.split(".")[1]) if "." in text else 0
         if abs(float(text) - value) > 0.5 * 10 ** -decimals * (1 + 1e-9):
-            failures.append("%s: %s shows %s, summary.json has %r (x %g)"
-                            % (name, n["key"], text, value / n["scale"], n["scale"]))
-    print("%s: %d numbers equal summary.json, %.2f MB" % (name, len(check["numbers"]), size_mb))
+            failures.append("%s: %s shows %s, %s has %r (x %g)"
+                            % (name, n["key"], text, summary_name, value / n["scale"], n["scale"]))
+    print("%s: %d numbers equal %s, %.2f MB" % (name, len(check["numbers"]), summary_name,
+                                                size_mb))
     if opts.screenshots:
         os.makedirs(opts.screenshots, exist_ok=True)
         chromium(browser, ["--window-size=1280,%d" % opts.screenshot_height,

@@ -6,6 +6,8 @@
 #include <mutex>
 
 #include "analysis/run/material_comparison.h"
+#include "analysis/report/provenance.h"
+#include "analysis/report/wear_report.h"
 #include "analysis/run/wear_job.h"
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
@@ -30,6 +32,7 @@ struct CompareArgs {
   bool quiet = false;
   bool resume = false;
   bool no_plots = false;
+  bool no_report = false;
   bool no_break_even = false;
   bool break_even = false;        // also with the deformable insert
   std::string reference = "uhmwpe";
@@ -42,6 +45,9 @@ void run(const CompareArgs& a) {
   for (const auto& s : a.sets) base.push_back(models::parse_override(s));
   // every material is checked before any simulation starts
   std::vector<run::WearJob> jobs;
+  // the report: each material's page and its 3D scene for the comparison's page
+  std::optional<report::Provenance> provenance;
+  std::vector<report::Scene3D> scenes(a.materials.size());
   for (const auto& m : a.materials) {
     std::vector<models::Override> o = base;
     o.push_back({"material.name", "\"" + m + "\""});
@@ -55,6 +61,11 @@ void run(const CompareArgs& a) {
     job.plots = !a.no_plots;
     job.resume = a.resume;
     job.wear_law = a.wear_law;
+    if (!a.no_report) {
+      if (!provenance) provenance = report::make_provenance(a.config, a.sets, job.config);
+      job.report = *provenance;
+      job.scene_out = &scenes[jobs.size()];
+    }
     // what defines this material's run: the config's text, the overrides, the material and
     // the schedule (a checkpoint or finished run of anything else is not resumed)
     std::ostringstream id;
@@ -69,7 +80,7 @@ void run(const CompareArgs& a) {
   // folders of materials not run now go (a folder with anything but wear outputs stays)
   for (const char* f : {"comparison.csv", "comparison.md", "comparison.json", "compare_wear.png",
                         "compare_kinematics.png", "compare_contact.png", "break_even.csv",
-                        "break_even_runs.csv", "compare_break_even.png"}) {
+                        "break_even_runs.csv", "compare_break_even.png", "report.html"}) {
     fs::remove(fs::path(a.out) / f);
   }
   std::vector<fs::path> others;
@@ -214,6 +225,7 @@ void run(const CompareArgs& a) {
                                      (fs::path(a.out) / "compare_break_even.png").string()});
     }
   }
+  if (provenance) report::write_compare_report(a.out, *provenance, a.materials, scenes);
   if (!a.quiet) std::printf("%s%sresults in %s\n", head.str().c_str(), md.c_str(), a.out.c_str());
 }
 
@@ -226,7 +238,7 @@ void add_compare_command(CLI::App& app) {
       "The same wear simulation for several insert materials, concurrently (default: uhmwpe, "
       "peek, cfr-peek; 5 million cycles). Writes DIR/comparison.csv, DIR/comparison.md, "
       "DIR/comparison.json, plots (compare_wear.png, compare_kinematics.png, "
-      "compare_contact.png) and each material's wear outputs in DIR/<material>/, each "
+      "compare_contact.png), DIR/report.html and each material's wear outputs in DIR/<material>/, each "
       "checkpointed at every update (--resume continues a killed comparison). Per material: the "
       "figures that do not depend on the wear factor (pressures, area, sliding distance, "
       "cross-shear, wear potential; with --set insert=deformable the von Mises and "
@@ -249,6 +261,10 @@ void add_compare_command(CLI::App& app) {
       ->check(finite_range(1, 1024));
   cmd->add_flag("--no-plots", args->no_plots,
                 "skip the PNG plots (the CSV, JSON and Markdown results are the same)");
+  cmd->add_flag("--no-report", args->no_report,
+                "skip DIR/report.html and DIR/<material>/report.html (self-contained pages: "
+                "key numbers, 3D wear-depth view per material and update, the materials' plots "
+                "side by side, provenance)");
   cmd->add_flag("--quiet", args->quiet, "no per-material lines or table");
   cmd->add_flag("--no-break-even", args->no_break_even,
                 "skip the break-even wear-factor ratios (each is several whole wear runs)");

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "analysis/report/provenance.h"
 #include "analysis/run/wear_job.h"
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
@@ -28,6 +29,7 @@ struct WearArgs {
   bool quiet = false;
   bool no_depth_maps = false;
   bool no_plots = false;
+  bool no_report = false;
   std::vector<long> convergence;  // update intervals of a convergence study
   std::string wear_law = "archard";
   std::vector<std::string> law_params;  // name=value
@@ -99,6 +101,11 @@ void run(const WearArgs& a) {
   job.plots = !a.no_plots;
   job.wear_law = a.wear_law;
   job.law_params = a.law_params;
+  if (!a.no_report) {
+    std::vector<std::string> sets = a.sets;
+    if (!a.material.empty()) sets.push_back("material.name=\"" + a.material + "\" (--material)");
+    job.report = report::make_provenance(a.config, sets, job.config);
+  }
   std::ostringstream id;
   id << "wear v1\n" << (a.config.empty() ? std::string() : io::read_file(a.config)) << "\n";
   for (const auto& o : overrides) id << o.key << "=" << o.value << "\n";
@@ -129,7 +136,7 @@ void add_wear_command(CLI::App& app) {
       "scaled by the cycles per update, the insert receding along its normal (default: 5 "
       "million cycles, update every 250 000, built-in implant, stanmore rig, UHMWPE). Writes "
       "DIR/wear.csv (one row per update), DIR/summary.json, DIR/wear_depth_<cycles>.vtp per "
-      "update, DIR/final_depth.csv, DIR/wear.png and DIR/depth_map.png; checkpoints after "
+      "update, DIR/final_depth.csv, DIR/wear.png, DIR/depth_map.png and DIR/report.html; checkpoints after "
       "every update (DIR/wear.checkpoint) so that --resume continues a killed run. With --set "
       "insert=deformable the hex8 insert wears (docs/deformable.md): its top nodes recede, its "
       "columns are re-graded, and wear.csv and summary.json add the von Mises and plastic-strain "
@@ -175,6 +182,9 @@ void add_wear_command(CLI::App& app) {
   cmd->add_flag("--no-plots", args->no_plots,
                 "skip DIR/wear.png and DIR/depth_map.png (the CSV, JSON and VTK results are the "
                 "same)");
+  cmd->add_flag("--no-report", args->no_report,
+                "skip DIR/report.html (one self-contained page: key numbers, 3D wear-depth view "
+                "per update, plots, provenance)");
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
   cmd->callback([args] {
     io::check_output_folder(args->out);  // before any work

@@ -15,6 +15,11 @@ namespace {
 constexpr int kBisections = 4;
 // the linear-theory start: the bracket spans this factor either side of it
 constexpr double kBracket = 4.0;
+// sizes scanned (log-spaced) for the largest identifiable signal within the bounds
+constexpr int kScan = 16;
+// fraction of the way from the null value to the search bound (in the size coordinate) that
+// the sizes are searched over
+constexpr double kSearchedFraction = 0.8;
 
 // The size coordinate u > 0 of one parameter: value(u) and the largest u within the bounds.
 struct SizeAxis {
@@ -160,11 +165,10 @@ DiagnosisCase linear_case(const DiagnosisCase& c, std::shared_ptr<const LinearMo
 
 }  // namespace
 
-Signal identifiable_signal(const Problem& pb, Effect effect, const Eigen::VectorXd& baseline,
-                           const Eigen::VectorXd& effect_params) {
-  // the baseline refitted to the noise-free prediction with the effect: white residuals in the
-  // converted units, the free nuisance terms only (a prior-bound term cannot absorb an effect
-  // of any size)
+Signal identifiable_part(const Problem& pb, const Eigen::VectorXd& truth,
+                         const Eigen::VectorXd& baseline) {
+  // the baseline refitted to the noise-free values: white residuals in the converted units,
+  // the free nuisance terms only (a prior-bound term cannot absorb an effect of any size)
   Problem p = pb;
   p.random_effect = false;
   p.em.correlation = Correlation::none;
@@ -177,10 +181,6 @@ Signal identifiable_signal(const Problem& pb, Effect effect, const Eigen::Vector
   p.clusters.clear();
   for (Eigen::Index i = 0; i < pb.y.size(); ++i) p.clusters.push_back({static_cast<int>(i)});
   const auto rows = all_rows(static_cast<size_t>(pb.y.size()));
-  const Eigen::Index nb = baseline.size();
-  Eigen::VectorXd params(nb + effect_params.size());
-  params << baseline, effect_params;
-  const Eigen::VectorXd truth = predict(pb, effect, params, rows);
   Noise white{pb.unit, 0.0, 0.0, 0.0, 0.0};
   const FitState fs = fit_clusters(p, truth, Effect::none, pb.c.baseline_params, baseline,
                                    p.clusters, white, false);
@@ -190,6 +190,14 @@ Signal identifiable_signal(const Problem& pb, Effect effect, const Eigen::Vector
   s.delta = truth - fitted;
   s.rms = score(pb, truth, fitted);
   return s;
+}
+
+Signal identifiable_signal(const Problem& pb, Effect effect, const Eigen::VectorXd& baseline,
+                           const Eigen::VectorXd& effect_params) {
+  const auto rows = all_rows(static_cast<size_t>(pb.y.size()));
+  Eigen::VectorXd params(baseline.size() + effect_params.size());
+  params << baseline, effect_params;
+  return identifiable_part(pb, predict(pb, effect, params, rows), baseline);
 }
 
 double error_model_rms(const Problem& pb, const Noise& noise, double sigma,
@@ -239,7 +247,9 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
   const Problem& pb = *pbp;
   const auto rows = all_rows(static_cast<size_t>(pb.y.size()));
   const Eigen::VectorXd f0 = predict(pb, Effect::none, base, rows);
-  const double sigma = none.noise.sigma;
+  // the fitted noise: of the model the data support (the named one; the refitted baseline's
+  // when none is named), so that an effect present in the data is not counted as noise
+  const double sigma = res.extended().noise.sigma;
   out.noise_rms = error_model_rms(pb, nz, sigma, f0);
 
   // common random numbers: R noise draws from the fitted error model, shared by every
@@ -279,17 +289,37 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
         v << base, p;
         return v;
       };
+      // the searched sizes end where the identifiable signal stops growing (an incubation
+      // time far beyond the measurements looks like a lower wear factor, which the baseline
+      // absorbs): a size beyond that is not a larger effect
+      // and short of the search bound: a fit of an effect at the bound lands on it and is not
+      // named by rule, which says nothing about its size
+      const double lo_u = axis.u_min > 0.0 ? axis.u_min : 1e-3 * axis.u_max;
+      const double u_search = axis.u_min > 0.0
+                                  ? lo_u * std::pow(axis.u_max / lo_u, kSearchedFraction)
+                                  : kSearchedFraction * axis.u_max;
+      double u_top = u_search;
+      {
+        double best = -1.0;
+        for (int g = 0; g <= kScan; ++g) {
+          const double u = lo_u * std::pow(u_search / lo_u, static_cast<double>(g) / kScan);
+          const double rms = identifiable_signal(pb, e, base, params_at(u)).rms;
+          if (!(rms > best)) break;
+          best = rms;
+          u_top = u;
+        }
+      }
       // linear theory for the bracket: the whitened identifiable signal at a reference size,
       // scaled to the noncentrality that passes the AICc gate with 80 % chance
-      const double u_ref = std::max(axis.u_min, 0.1 * axis.u_max);
+      const double u_ref = std::max(axis.u_min, 0.1 * u_top);
       const Signal ref = identifiable_signal(pb, e, base, params_at(u_ref));
       Eigen::VectorXd z(static_cast<Eigen::Index>(flat.size()));
       for (size_t i = 0; i < flat.size(); ++i) z[static_cast<Eigen::Index>(i)] = ref.delta[flat[i]] * nz.w[flat[i]];
       const double q = wh.whiten(z).squaredNorm() / std::max(sigma * sigma, 1e-300);
       const double target = std::pow(0.8416 + std::sqrt(ic + 2.0 * static_cast<double>(specs.size())), 2);
-      double u_lin = q > 0.0 ? u_ref * std::sqrt(target / q) : axis.u_max;
+      double u_lin = q > 0.0 ? u_ref * std::sqrt(target / q) : u_top;
       if (axis.spec.log_scale && !(axis.spec.null_value > 0.0)) u_lin = std::max(u_lin, axis.u_min);
-      const double u_hi = std::min(axis.u_max, kBracket * u_lin);
+      const double u_hi = std::min(u_top, kBracket * u_lin);
       const double u_lo = std::max(axis.u_min, u_hi / (kBracket * kBracket));
 
       auto named = [&](int r, double u) {
@@ -297,11 +327,11 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
         Eigen::VectorXd y = f0 + (predict(pb, e, full(pe), rows) - f0) + draws[static_cast<size_t>(r)];
         const ModelFit n0 = fit_candidate_fixed_noise(pb, y, Effect::none, base, nz, false);
         const ModelFit m = fit_candidate_fixed_noise(pb, y, e, full(pe), nz, false);
-        if (!(m.aicc < n0.aicc - ic)) return false;
-        if (!find_params_at_bound(m.specs, m.params).empty()) return false;
         const double h_none =
             score(pb, y, heldout_predictions(pb, y, Effect::none, n0.specs, n0.params, nz));
         const double h_e = score(pb, y, heldout_predictions(pb, y, e, m.specs, m.params, nz));
+        if (!(m.aicc < n0.aicc - ic)) return false;
+        if (!find_params_at_bound(m.specs, m.params).empty()) return false;
         if (!(h_e < (1.0 - options.heldout_threshold) * h_none)) return false;
         if (options.trivial_gate) {
           const double h_t = trivial_predictor(pb, y, nz).heldout_rmse;
@@ -313,11 +343,11 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
       for (int r = 0; r < reps; ++r) {
         double lo = u_lo, hi = u_hi;
         if (!named(r, hi)) {
-          if (hi >= axis.u_max || !named(r, axis.u_max)) {
+          if (hi >= u_top || !named(r, u_top)) {
             thresholds.push_back(std::numeric_limits<double>::infinity());
             continue;
           }
-          lo = hi, hi = axis.u_max;
+          lo = hi, hi = u_top;
         } else if (named(r, lo)) {
           thresholds.push_back(lo);
           continue;
@@ -338,7 +368,7 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
       lim.direction = axis.direction;
       lim.replicates = reps;
       lim.reached = std::isfinite(thresholds[k]);
-      const double u = lim.reached ? thresholds[k] : axis.u_max;
+      const double u = lim.reached ? thresholds[k] : u_top;
       lim.value = params_at(u)[axis.index];
       lim.signal_rms = identifiable_signal(pb, e, base, params_at(u)).rms;
       lim.ratio = out.noise_rms > 0.0 ? lim.signal_rms / out.noise_rms : 0.0;

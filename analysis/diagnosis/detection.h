@@ -4,7 +4,8 @@
 // names in `detection_rate` (80 %) of data sets simulated with the FITTED error model of the
 // data: the refitted baseline's predictions, plus the effect at that size (its other parameters
 // at their null or initial values), plus noise drawn from the profiled covariance (correlation,
-// specimen random effects) and the nuisance terms' priors. Each replicate is diagnosed between
+// specimen random effects) and the nuisance terms' priors, of the model the data support (the
+// named one, or the refitted baseline). Each replicate is diagnosed between
 // `none` and the candidate with the same gates as the real data (AICc drop, held-out drop
 // against none and the trivial predictor, no parameter at a search bound), at the data's
 // fitted noise state; the replicate's threshold size is found by bisection on ln(size) with
@@ -36,12 +37,16 @@ struct Signal {
 };
 Signal identifiable_signal(const Problem& pb, Effect effect, const Eigen::VectorXd& baseline,
                            const Eigen::VectorXd& effect_params);
+// the same for given noise-free values at every row (row order)
+Signal identifiable_part(const Problem& pb, const Eigen::VectorXd& truth,
+                         const Eigen::VectorXd& baseline);
 
 // the RMS of the fitted error model in the diagnosis' RMSE measure [rmse_unit]
 double error_model_rms(const Problem& pb, const Noise& noise, double sigma,
                        const Eigen::VectorXd& prediction);
 
+// `noise`: the noise state of the selected model (the named effect's, or none's)
 DetectionResult detection_limits(const Problem& pb, const DiagnosisResult& res,
-                                 const Noise& none_noise, const DiagnosisOptions& options);
+                                 const Noise& noise, const DiagnosisOptions& options);
 
 }  // namespace kneesim::diagnosis::detail

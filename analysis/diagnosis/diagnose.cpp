@@ -133,8 +133,10 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
     // a gain the trivial predictor also achieves is not a finding: the same held-out margin
     // against it (binds only where the baseline predicts worse than the trivial predictor)
     m.beats_trivial = beats_trivial(m, res.trivial, options);
-    if (m.passes_gates && m.beats_trivial && m.at_bound.empty() &&
-        (res.selected == 0 || m.heldout_rmse < res.extended().heldout_rmse)) {
+    const bool better = res.selected == 0 ||
+                        (options.rank_by_aicc ? m.aicc < res.extended().aicc
+                                              : m.heldout_rmse < res.extended().heldout_rmse);
+    if (m.passes_gates && m.beats_trivial && m.at_bound.empty() && better) {
       res.selected = static_cast<int>(i);
     }
   }
@@ -147,7 +149,7 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
                             ? 1.0 - res.extended().heldout_rmse / res.trivial.heldout_rmse
                             : 0.0;
   if (options.detection_replicates > 0) {
-    res.detection = detection_limits(pb, res, noises.front(), options);
+    res.detection = detection_limits(pb, res, noises[static_cast<size_t>(res.selected)], options);
   }
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
@@ -162,6 +164,18 @@ bool passes_gates(const ModelFit& m, const ModelFit& none, const DiagnosisOption
 bool beats_trivial(const ModelFit& m, const ModelFit& trivial, const DiagnosisOptions& options) {
   return !options.trivial_gate ||
          m.heldout_rmse < (1.0 - options.heldout_threshold) * trivial.heldout_rmse;
+}
+
+double rmse_measure(const DiagnosisCase& c, const Eigen::VectorXd& residuals,
+                    const DiagnosisOptions& options) {
+  const detail::Problem pb = detail::make_problem(c, options);
+  return detail::score(pb, residuals, Eigen::VectorXd::Zero(residuals.size()));
+}
+
+double identifiable_rms_of(const DiagnosisCase& c, const Eigen::VectorXd& values,
+                           const Eigen::VectorXd& baseline, const DiagnosisOptions& options) {
+  const detail::Problem pb = detail::make_problem(c, options);
+  return detail::identifiable_part(pb, values, baseline).rms;
 }
 
 double identifiable_signal_rms(const DiagnosisCase& c, Effect effect,

@@ -63,6 +63,8 @@ struct DiagnosisOptions {
   double heldout_threshold = 0.05;  // required relative held-out RMSE drop against "none" [-]
   bool multi_start = true;          // multi-start the full-data fits
   bool trivial_gate = true;         // also require the held-out drop against the trivial predictor
+  // rank the supported candidates by AICc (true) or by held-out RMSE (false)
+  bool rank_by_aicc = true;
   std::string noise_model = "instrument";     // error model: white, correlated, instrument
   std::map<std::string, double> noise_params; // error-model keys (priors, switches)
   int detection_replicates = 0;     // replicates per candidate of the detection limits, 0: none
@@ -73,6 +75,7 @@ struct DiagnosisOptions {
 struct NoiseFit {
   double sigma = 0.0;       // sd of the whitened, weighted residuals [rmse_unit]
   double ell = 0.0;         // Ornstein-Uhlenbeck correlation length [series unit]; 0: white
+  double nugget = 0.0;      // white fraction of a correlated series' variance [-]
   double rho = 0.0;         // specimen wear-factor variance / sigma^2 (weighted units) [-]
   double rho_offset = 0.0;  // specimen offset variance / sigma^2 (weighted units) [-]
   double n_eff = 0.0;       // effective sample size of AICc's small-sample term [-]
@@ -165,6 +168,17 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
 // effect minus the baseline model (and the free nuisance terms) refitted to it by least
 // squares, in the diagnosis' RMSE measure (rmse_unit); the size of a hidden effect as the
 // detection limits measure it
+// the diagnosis' RMSE measure (rmse_unit) of residuals given at every measured row of `c`:
+// the count-weighted geometric mean of the per-quantity RMS values converted into rmse_unit,
+// or the RMS of the converted residuals for pooled noise
+double rmse_measure(const DiagnosisCase& c, const Eigen::VectorXd& residuals,
+                    const DiagnosisOptions& options = {});
+
+// the same for given noise-free values at every measured row (e.g. made by another forward
+// path): their RMS departure from the baseline refitted to them, starting from `baseline`
+double identifiable_rms_of(const DiagnosisCase& c, const Eigen::VectorXd& values,
+                           const Eigen::VectorXd& baseline, const DiagnosisOptions& options = {});
+
 double identifiable_signal_rms(const DiagnosisCase& c, Effect effect,
                                const Eigen::VectorXd& baseline,
                                const Eigen::VectorXd& effect_params,

@@ -18,14 +18,13 @@ constexpr double kRhoGrid[] = {0.0,  0.05, 0.1,   0.2,   0.5,   1.0,   2.0,    5
 constexpr double kOffsetGrid[] = {0.0, 0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0};
 // correlation lengths tried, as fractions of the searched range in ln ell (plus 0: white)
 constexpr int kEllGrid = 9;
+// white fractions of a correlated series' variance tried (then refined in ln, below 1)
+constexpr double kNuggetGrid[] = {0.0, 0.02, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 0.9};
 
 // golden-section steps refining a variance ratio or a correlation length after its grid (ln
 // of the value to within about 0.03)
 constexpr int kRefinements = 8;
 
-// alternations between the fit and the noise model (converged when no weight, variance ratio
-// or correlation length moves by more than 1 %; two or three suffice in the tests)
-constexpr int kNoiseIterations = 6;
 
 // fewest measurements of a quantity for which a proportional noise line is fitted
 constexpr int kMinRowsProportional = 20;
@@ -288,9 +287,8 @@ Problem make_problem(const DiagnosisCase& c, const DiagnosisOptions& options) {
   }
   pb.dg = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows.size()));
   for (Effect e : c.candidates) {
-    pb.max_params = std::max(pb.max_params, static_cast<int>(candidate_specs(pb, e).size()));
+    pb.max_params = std::max(pb.max_params, regression_parameters(pb, candidate_specs(pb, e).size()));
   }
-  pb.max_params += error_parameters(pb);
   return pb;
 }
 
@@ -306,6 +304,7 @@ Whitener make_whitener(const Problem& pb, const std::vector<std::vector<int>>& c
   p.rho = pb.random_effect ? noise.rho : 0.0;
   p.rho_offset = pb.em.specimen_offset ? noise.rho_offset : 0.0;
   p.ell = pb.em.correlation == Correlation::ou ? noise.ell : 0.0;
+  p.nugget = noise.nugget;
   return Whitener(clusters, rows, p);
 }
 
@@ -406,17 +405,24 @@ double neg2_log_likelihood(const Problem& pb, const Eval& ev, const Whitener& wh
 
 int error_parameters(const Problem& pb) {
   return noise_params(pb) + (pb.random_effect ? 1 : 0) + (pb.em.specimen_offset ? 1 : 0) +
-         (pb.em.correlation == Correlation::ou ? 1 : 0) + static_cast<int>(pb.em.nuisance.size());
+         (pb.em.correlation == Correlation::ou ? 2 : 0) + static_cast<int>(pb.em.nuisance.size());
 }
 
 double effective_n(const Problem& pb, const Noise& noise) {
   return effective_sample_size(pb.series, pb.sx,
-                               pb.em.correlation == Correlation::ou ? noise.ell : 0.0);
+                               pb.em.correlation == Correlation::ou ? noise.ell : 0.0,
+                               noise.nugget);
 }
 
-double aicc_of(double neg2, int k, double n_eff) {
-  if (!(n_eff - k - 1.0 > 0.0)) return std::numeric_limits<double>::infinity();
-  return neg2 + 2.0 * k + 2.0 * k * (k + 1.0) / (n_eff - k - 1.0);
+int regression_parameters(const Problem& pb, size_t model_params) {
+  int free = 0;
+  for (const auto& t : pb.em.nuisance) free += t.prior_sd > 0.0 ? 0 : 1;
+  return static_cast<int>(model_params) + free + 1;
+}
+
+double aicc_of(double neg2, int k, int k_r, double n_eff) {
+  if (!(n_eff - k_r - 1.0 > 0.0)) return std::numeric_limits<double>::infinity();
+  return neg2 + 2.0 * k + 2.0 * k_r * (k_r + 1.0) / (n_eff - k_r - 1.0);
 }
 
 double score(const Problem& pb, const Eigen::VectorXd& y, const Eigen::VectorXd& pred) {
@@ -441,6 +447,42 @@ double score(const Problem& pb, const Eigen::VectorXd& y, const Eigen::VectorXd&
   return std::exp(log_sum / n);
 }
 
+Eigen::VectorXd heldout_with_nuisance(const Problem& pb, const Eigen::VectorXd& y,
+                                      const std::vector<int>& test, const Eigen::VectorXd& pred,
+                                      const Eigen::VectorXd& beta_train, const Noise& noise) {
+  if (pb.em.nuisance.empty() || !pred.allFinite()) return pred;
+  const Eigen::MatrixXd x = nuisance_columns(pb, test, pred);
+  Eigen::VectorXd p = pred;
+  std::vector<Eigen::Index> free;
+  for (size_t j = 0; j < pb.em.nuisance.size(); ++j) {
+    const auto jj = static_cast<Eigen::Index>(j);
+    if (pb.em.nuisance[j].prior_sd > 0.0) {
+      if (jj < beta_train.size()) p += beta_train[jj] * x.col(jj);
+    } else {
+      free.push_back(jj);
+    }
+  }
+  if (free.empty()) return p;
+  // the free terms by generalized least squares over the test rows' clusters
+  std::map<int, Eigen::Index> at;
+  for (size_t i = 0; i < test.size(); ++i) at[test[i]] = static_cast<Eigen::Index>(i);
+  const auto cl = clusters_of(pb, test);
+  const auto flat = flatten(cl);
+  const Whitener wh = make_whitener(pb, cl, noise);
+  Eigen::VectorXd z(static_cast<Eigen::Index>(flat.size()));
+  Eigen::MatrixXd xf(z.size(), static_cast<Eigen::Index>(free.size()));
+  for (size_t i = 0; i < flat.size(); ++i) {
+    const Eigen::Index k = at.at(flat[i]);
+    const double w = noise.w[flat[i]];
+    z[static_cast<Eigen::Index>(i)] = (y[flat[i]] - p[k]) * w;
+    for (size_t j = 0; j < free.size(); ++j) xf(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = x(k, free[j]) * w;
+  }
+  const Eigen::VectorXd b = solve_nuisance(wh.whiten(z), wh.whiten(xf),
+                                           Eigen::VectorXd::Zero(xf.cols()), nullptr);
+  for (size_t j = 0; j < free.size(); ++j) p += b[static_cast<Eigen::Index>(j)] * x.col(free[j]);
+  return p;
+}
+
 Eigen::VectorXd heldout_predictions(const Problem& pb, const Eigen::VectorXd& y, Effect e,
                                     const std::vector<ParamSpec>& specs,
                                     const Eigen::VectorXd& start, const Noise& noise) {
@@ -448,7 +490,7 @@ Eigen::VectorXd heldout_predictions(const Problem& pb, const Eigen::VectorXd& y,
   for (const Fold& f : pb.c.folds) {
     const FitState fs = fit_clusters(pb, y, e, specs, start, clusters_of(pb, f.train), noise, false);
     Eigen::VectorXd p = predict(pb, e, fs.fit.params, f.test);
-    if (fs.eval.beta.size() > 0 && p.allFinite()) p += nuisance_columns(pb, f.test, p) * fs.eval.beta;
+    p = heldout_with_nuisance(pb, y, f.test, p, fs.eval.beta, noise);
     for (size_t i = 0; i < f.test.size(); ++i) out[f.test[i]] = p[static_cast<Eigen::Index>(i)];
   }
   return out;
@@ -476,6 +518,7 @@ void finish_fit(const Problem& pb, const Eigen::VectorXd& y, ModelFit& m,
   const double sigma = std::sqrt(rss_white / n);
   m.noise.sigma = sigma;
   m.noise.ell = noise.ell;
+  m.noise.nugget = noise.nugget;
   m.noise.rho = noise.rho;
   m.noise.rho_offset = noise.rho_offset;
   m.noise.n_eff = effective_n(pb, noise);
@@ -544,8 +587,11 @@ ModelFit fit_candidate(const Problem& pb, const Eigen::VectorXd& y, Effect e,
   // likelihood value at each step
   Noise best_noise = noise;
   FitState best;
+  bool found = false;
   m.aicc = std::numeric_limits<double>::infinity();
-  for (int it = 0; it < kNoiseIterations; ++it) {
+  // alternations (converged when no weight, variance ratio, correlation length or prior
+  // weight moves by more than 1 %; two or three suffice in the tests)
+  for (int it = 0; it < std::max(1, c.fit_control.noise_iterations); ++it) {
     FitState fit = fit_clusters(pb, y, e, m.specs, start, pb.clusters, noise,
                                 (opt.multi_start || c.multi_start_effects.count(e)) && it == 0);
     auto neg2_at = [&](const Noise& nz, const FitState& fs) {
@@ -605,20 +651,35 @@ ModelFit fit_candidate(const Problem& pb, const Eigen::VectorXd& y, Effect e,
         grid.push_back(pb.ell_lo * std::pow(pb.ell_hi / pb.ell_lo, g / (kEllGrid - 1.0)));
       }
       noise.ell = profile(try_ell, grid, nullptr);
+      // the white part of the correlated series' variance
+      if (noise.ell > 0.0) {
+        auto try_nugget = [&](double v) {
+          Noise nz = noise;
+          nz.nugget = v;
+          if (effective_n(pb, nz) < pb.max_params + 2.0) return std::numeric_limits<double>::infinity();
+          return neg2_at(nz, fit);
+        };
+        noise.nugget = profile(try_nugget, std::vector<double>(std::begin(kNuggetGrid), std::end(kNuggetGrid)), nullptr);
+      } else {
+        noise.nugget = 0.0;
+      }
     }
     {
       const Whitener wh = make_whitener(pb, pb.clusters, noise);
       fit.eval = evaluate_prediction(pb, y, flat, fit.eval.pred, wh, noise);
-      const double a = aicc_of(neg2_log_likelihood(pb, fit.eval, wh, noise), k, effective_n(pb, noise));
+      const double a = aicc_of(neg2_log_likelihood(pb, fit.eval, wh, noise), k,
+                               regression_parameters(pb, m.specs.size()), effective_n(pb, noise));
       if (a < m.aicc) {
         m.aicc = a;
         best = fit;
         best_noise = noise;
+        found = true;
       }
     }
     double moved = std::max({relative_move(noise.rho, before.rho),
                              relative_move(noise.rho_offset, before.rho_offset),
-                             relative_move(noise.ell, before.ell)});
+                             relative_move(noise.ell, before.ell),
+                             relative_move(noise.nugget, before.nugget)});
     const bool reweight = !(pb.noise == NoiseModel::pooled || pb.fixed_w.size() > 0 ||
                             (pb.quantities() == 1 && pb.noise == NoiseModel::per_quantity));
     if (reweight) {
@@ -638,7 +699,7 @@ ModelFit fit_candidate(const Problem& pb, const Eigen::VectorXd& y, Effect e,
   }
   // no step had a finite likelihood (predictions or weights not finite): numerical trouble,
   // reported as such rather than evaluated further
-  if (best.fit.params.size() != static_cast<Eigen::Index>(m.specs.size())) {
+  if (!found) {
     throw std::runtime_error("the fit of candidate " + std::string(effect_name(e)) + " to " +
                              c.measured.source + " found no parameters with a finite "
                              "likelihood; the measurements cannot be modelled by it");
@@ -664,7 +725,8 @@ ModelFit fit_candidate_fixed_noise(const Problem& pb, const Eigen::VectorXd& y, 
   const FitState fs = fit_clusters(pb, y, e, m.specs, start, pb.clusters, noise, false);
   const Whitener wh = make_whitener(pb, pb.clusters, noise);
   m.params = fs.fit.params;
-  m.aicc = aicc_of(neg2_log_likelihood(pb, fs.eval, wh, noise), k, effective_n(pb, noise));
+  m.aicc = aicc_of(neg2_log_likelihood(pb, fs.eval, wh, noise), k,
+                   regression_parameters(pb, m.specs.size()), effective_n(pb, noise));
   if (heldout) {
     m.heldout_predictions = heldout_predictions(pb, y, e, m.specs, m.params, noise);
     m.heldout_rmse = score(pb, y, m.heldout_predictions);
@@ -686,7 +748,8 @@ ModelFit practitioner_baseline(const Problem& pb, const Noise& noise) {
     const Eval ev = evaluate(pb, pb.y, Effect::none, m.params, pb.clusters, wh, noise);
     finish_fit(pb, pb.y, m, in_row_order(flatten(pb.clusters), ev.pred), ev.beta, ev.rss, noise);
     m.aicc = aicc_of(neg2_log_likelihood(pb, ev, wh, noise),
-                     static_cast<int>(m.specs.size()) + error_parameters(pb), effective_n(pb, noise));
+                     static_cast<int>(m.specs.size()) + error_parameters(pb),
+                     regression_parameters(pb, m.specs.size()), effective_n(pb, noise));
   }
   m.heldout_predictions = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(rows.size()), NAN);
   for (const Fold& f : c.folds) {
@@ -695,7 +758,7 @@ ModelFit practitioner_baseline(const Problem& pb, const Noise& noise) {
     const Whitener wh = make_whitener(pb, train, noise);
     const Eval ev = evaluate(pb, pb.y, Effect::none, params, train, wh, noise);
     Eigen::VectorXd p = c.predict(Effect::none, params, none, f.test);
-    if (ev.beta.size() > 0 && p.allFinite()) p += nuisance_columns(pb, f.test, p) * ev.beta;
+    p = heldout_with_nuisance(pb, pb.y, f.test, p, ev.beta, noise);
     for (size_t i = 0; i < f.test.size(); ++i) m.heldout_predictions[f.test[i]] = p[static_cast<Eigen::Index>(i)];
   }
   m.heldout_rmse = score(pb, pb.y, m.heldout_predictions);
@@ -720,27 +783,31 @@ ModelFit trivial_predictor(const Problem& pb, const Eigen::VectorXd& y, const No
     return p;
   };
   // the nuisance terms of the trivial predictor, fitted on the training rows like a model's
-  auto with_nuisance = [&](const std::vector<int>& train, const std::vector<int>& rows) {
+  auto with_nuisance = [&](const std::vector<int>& train, const std::vector<int>& rows,
+                           bool heldout) {
     Eigen::VectorXd p = predict_rows(train, rows);
     if (pb.em.nuisance.empty()) return p;
     const auto cl = clusters_of(pb, train);
     const auto flat = flatten(cl);
     const Whitener wh = make_whitener(pb, cl, noise);
     const Eval ev = evaluate_prediction(pb, y, flat, predict_rows(train, flat), wh, noise);
-    if (ev.beta.size() > 0 && p.allFinite()) p += nuisance_columns(pb, rows, p) * ev.beta;
-    return p;
+    if (!heldout) {
+      if (ev.beta.size() > 0 && p.allFinite()) p += nuisance_columns(pb, rows, p) * ev.beta;
+      return p;
+    }
+    return heldout_with_nuisance(pb, y, rows, p, ev.beta, noise);
   };
   ModelFit m;
   m.effect = Effect::none;
   m.model = c.trivial_predict ? c.trivial_model : "the measured mean of each quantity (no model)";
   m.aicc = NAN;
   const std::vector<int> all = all_rows(static_cast<size_t>(n));
-  m.predictions = with_nuisance(all, all);
+  m.predictions = with_nuisance(all, all, false);
   m.rss = (m.predictions - y).cwiseProduct(pb.unit).squaredNorm();
   m.rmse = score(pb, y, m.predictions);
   m.heldout_predictions = Eigen::VectorXd::Constant(n, NAN);
   for (const Fold& f : c.folds) {
-    const Eigen::VectorXd p = with_nuisance(f.train, f.test);
+    const Eigen::VectorXd p = with_nuisance(f.train, f.test, true);
     for (size_t k = 0; k < f.test.size(); ++k) m.heldout_predictions[f.test[k]] = p[static_cast<Eigen::Index>(k)];
   }
   m.heldout_rmse = score(pb, y, m.heldout_predictions);

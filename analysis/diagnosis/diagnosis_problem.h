@@ -50,7 +50,8 @@ struct Problem {
   std::vector<double> sx;                  // abscissa of the correlation per row
   std::vector<char> offset_rows;           // 1 where the specimen offset acts
   double ell_lo = 0.0, ell_hi = 0.0;       // searched correlation lengths [series unit]
-  int max_params = 0;                      // most parameters of any candidate (n_eff floor)
+  int max_params = 0;                      // most regression parameters of any candidate
+                                           // (the floor of n_eff)
   int quantities() const { return static_cast<int>(quantity_names.size()); }
 };
 
@@ -64,6 +65,7 @@ struct Noise {
   double rho = 0.0;       // specimen slope variance ratio [-]
   double rho_offset = 0.0;  // specimen offset variance ratio [-]
   double ell = 0.0;       // correlation length [series unit]
+  double nugget = 0.0;    // white fraction of a correlated series' variance [-]
   double sigma = 0.0;     // whitened sd setting the nuisance priors' weight; 0: priors off
 };
 
@@ -114,7 +116,12 @@ double neg2_log_likelihood(const Problem& pb, const Eval& ev, const Whitener& wh
 // error-model parameters counted in AICc (sds, variance ratios, correlation length, nuisance)
 int error_parameters(const Problem& pb);
 double effective_n(const Problem& pb, const Noise& noise);
-double aicc_of(double neg2, int k, double n_eff);
+// the regression parameters of a model with `model_params` parameters: those, the free
+// nuisance terms and the residual scale (the k of Hurvich and Tsai's small-sample term)
+int regression_parameters(const Problem& pb, size_t model_params);
+// AICc = -2 log L + 2 k + 2 k_r (k_r + 1) / (n_eff - k_r - 1): k every estimated parameter, k_r
+// the regression parameters, n_eff the effective sample size of the correlated residuals
+double aicc_of(double neg2, int k, int k_r, double n_eff);
 
 // the score of a prediction of all rows (diagnose.h: count-weighted geometric mean of the
 // per-quantity RMSEs in rmse_unit, or the RMS of converted residuals for pooled noise)
@@ -129,8 +136,15 @@ ModelFit fit_candidate(const Problem& pb, const Eigen::VectorXd& y, Effect e,
 ModelFit fit_candidate_fixed_noise(const Problem& pb, const Eigen::VectorXd& y, Effect e,
                                    const Eigen::VectorXd& start, const Noise& noise,
                                    bool heldout);
+// the held-out prediction of `test` rows from a model's prediction there: the prior-bound
+// nuisance terms from the training rows (`beta_train`: the instrument's calibration, the same
+// over the record) and the free ones (an offset, a drift: not predictable from other rows)
+// fitted on the test rows themselves, for every model and the trivial predictor alike
+Eigen::VectorXd heldout_with_nuisance(const Problem& pb, const Eigen::VectorXd& y,
+                                      const std::vector<int>& test, const Eigen::VectorXd& pred,
+                                      const Eigen::VectorXd& beta_train, const Noise& noise);
 // predictions of held-out rows for each fold, refitting from `start` at a fixed noise state;
-// nuisance terms from the training rows
+// nuisance terms as heldout_with_nuisance
 Eigen::VectorXd heldout_predictions(const Problem& pb, const Eigen::VectorXd& y, Effect e,
                                     const std::vector<ParamSpec>& specs,
                                     const Eigen::VectorXd& start, const Noise& noise);

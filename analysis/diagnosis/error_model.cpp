@@ -45,7 +45,7 @@ ErrorModel select_error_model(const ErrorModel& full, const std::string& name,
     }
     for (const auto& t : full.nuisance) {
       if (t.prior_key.empty()) continue;
-      allowed += ", " + t.prior_key;
+      if (allowed.find(t.prior_key) == std::string::npos) allowed += ", " + t.prior_key;
       if (key != t.prior_key) continue;
       known = true;
       if (!(value >= 0.0 && value <= 1e6)) {
@@ -107,7 +107,8 @@ Whitener::Whitener(const std::vector<std::vector<int>>& clusters, const Covarian
           if ((*rows.series)[static_cast<size_t>(ri)] != (*rows.series)[static_cast<size_t>(rj)]) {
             continue;
           }
-          const double a = std::exp(-std::abs((*rows.x)[static_cast<size_t>(ri)] -
+          const double a = (1.0 - p.nugget) *
+                           std::exp(-std::abs((*rows.x)[static_cast<size_t>(ri)] -
                                               (*rows.x)[static_cast<size_t>(rj)]) / p.ell);
           c(i, j) += a;
           c(j, i) += a;
@@ -160,18 +161,31 @@ Eigen::VectorXd Whitener::color(const Eigen::VectorXd& xi) const {
 }
 
 double effective_sample_size(const std::vector<int>& series, const std::vector<double>& x,
-                             double ell) {
+                             double ell, double nugget) {
   if (!(ell > 0.0)) return static_cast<double>(series.size());
   std::map<int, std::vector<double>> by_series;
   for (size_t i = 0; i < series.size(); ++i) by_series[series[i]].push_back(x[i]);
   double n = 0.0;
   for (auto& [s, xs] : by_series) {
     std::sort(xs.begin(), xs.end());
-    n += 1.0;
-    for (size_t i = 1; i < xs.size(); ++i) {
-      const double phi = std::exp(-(xs[i] - xs[i - 1]) / ell);
-      n += (1.0 - phi) / (1.0 + phi);
+    if (nugget <= 0.0) {
+      n += 1.0;
+      for (size_t i = 1; i < xs.size(); ++i) {
+        const double phi = std::exp(-(xs[i] - xs[i - 1]) / ell);
+        n += (1.0 - phi) / (1.0 + phi);
+      }
+      continue;
     }
+    // 1^T R^-1 1 with R = (1 - nugget) A + nugget I
+    const auto m = static_cast<Eigen::Index>(xs.size());
+    Eigen::MatrixXd r(m, m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      r(i, i) = 1.0;
+      for (Eigen::Index j = 0; j < i; ++j) {
+        r(i, j) = r(j, i) = (1.0 - nugget) * std::exp(-(xs[static_cast<size_t>(i)] - xs[static_cast<size_t>(j)]) / ell);
+      }
+    }
+    n += Eigen::LLT<Eigen::MatrixXd>(r).matrixL().solve(Eigen::VectorXd::Ones(m)).squaredNorm();
   }
   return n;
 }

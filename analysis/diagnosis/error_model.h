@@ -2,10 +2,12 @@
 // model's own error. Three parts, each fitted with every candidate and shared by all of them:
 //
 //   correlation  residuals of one series (a load-cell record in time, a kinematics channel over
-//                the gait cycle, a specimen's repeated weighings) follow an Ornstein-Uhlenbeck
-//                (continuous AR(1)) process along the series' abscissa: corr(x_i, x_j) =
-//                exp(-|x_i - x_j| / ell), ell profiled. Instrument errors are not white: load
-//                cells drift, fluoroscopic registration errors are smooth over the cycle.
+//                the gait cycle, a specimen's repeated weighings) are an Ornstein-Uhlenbeck
+//                (continuous AR(1)) process along the series' abscissa plus a white part:
+//                corr(x_i, x_j) = (1 - nugget) exp(-|x_i - x_j| / ell) for i != j, ell and the
+//                nugget profiled. Instrument errors are not white: load cells drift,
+//                fluoroscopic registration errors are smooth over the cycle; and they are not
+//                one process: electrical noise adds a white part to a drift.
 //   random effects  per specimen (wear): the wear factor scatters multiplicatively (a slope
 //                along d prediction / d ln k) and the soak-control correction leaves an offset
 //                in every weighing of a specimen (an intercept on the volume rows); their
@@ -19,7 +21,7 @@
 //
 // The fit is generalized least squares: the weighted residuals z_i = w_i (y_i - f_i) of one
 // cluster (rows that are not independent: a specimen, or a series) have covariance sigma^2 C,
-// C = A(ell) + rho g g^T + rho_o h h^T (A the OU correlation between rows of the same series,
+// C = A(ell, nugget) + rho g g^T + rho_o h h^T (A the correlation between rows of a series,
 // g the specimen slope direction, h the specimen offset direction, in weighted units); every
 // cluster is whitened by its Cholesky factor, so the likelihood is exact. The effective sample
 // size of AICc's small-sample term follows the correlation: n_eff = sum over series of
@@ -92,6 +94,8 @@ struct CovarianceParams {
   double rho = 0.0;       // specimen slope variance / sigma^2 (weighted units) [-]
   double rho_offset = 0.0;  // specimen offset variance / sigma^2 (weighted units) [-]
   double ell = 0.0;       // OU correlation length [abscissa unit]; 0: white
+  double nugget = 0.0;    // white fraction of a correlated series' variance [-]: C = (1 - nugget)
+                          // A(ell) + nugget I within a series
 };
 
 // Cholesky factors of the clusters' covariances, for whitening residuals given in the clusters'
@@ -122,11 +126,12 @@ class Whitener {
   Eigen::Index size_ = 0;
 };
 
-// effective sample size under the OU correlation: sum over series of
-// 1 + sum_i (1 - phi_i) / (1 + phi_i), phi_i = exp(-(x_i - x_{i-1}) / ell) with the series'
-// rows in increasing x; n when ell = 0
+// effective sample size under the OU correlation: sum over series of 1^T R^-1 1, R the
+// series' correlation matrix: 1 + sum_i (1 - phi_i) / (1 + phi_i), phi_i =
+// exp(-(x_i - x_{i-1}) / ell) with the series' rows in increasing x, without a nugget; n when
+// ell = 0 (the information on a level that the correlated rows carry, in independent rows)
 double effective_sample_size(const std::vector<int>& series, const std::vector<double>& x,
-                             double ell);
+                             double ell, double nugget = 0.0);
 
 // Ridge least squares of whitened residuals r on whitened columns X: beta minimises
 // |r - X beta|^2 + sum_j lambda_j beta_j^2 (lambda_j = 0: free). Returns beta; `resid` =

@@ -30,6 +30,8 @@ struct FitControl {
   // (exact profile likelihood); off for a forward model that is a full simulation, where the
   // noise parameters are profiled at the fitted parameters and the two alternate instead
   bool refit_in_noise_profile = true;
+  // alternations between the fit and the error model's profile (each refits the parameters)
+  int noise_iterations = 6;
 };
 
 // minimises |r(params)|^2 from `initial`, plus every combination of the specs' extra starts

@@ -146,3 +146,29 @@ TEST_CASE("error-model names and keys: unknown ones are refused naming the allow
     CHECK(m.find("gain_sd") != std::string::npos);
   }
 }
+
+TEST_CASE("a white part in a correlated series: determinant and effective sample size") {
+  const std::vector<double> x = {0.0, 0.5, 1.5, 2.0, 3.5};
+  std::vector<int> series(x.size(), 0);
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(5);
+  CovarianceRows rows;
+  rows.w = &w;
+  rows.series = &series;
+  rows.x = &x;
+  const double ell = 1.3, nugget = 0.3;
+  CovarianceParams p{0.0, 0.0, ell};
+  p.nugget = nugget;
+  const Whitener wh({{0, 1, 2, 3, 4}}, rows, p);
+  Eigen::MatrixXd r(5, 5);
+  for (int i = 0; i < 5; ++i) {
+    for (int j = 0; j < 5; ++j) {
+      r(i, j) = i == j ? 1.0 : (1.0 - nugget) * std::exp(-std::abs(x[static_cast<size_t>(i)] - x[static_cast<size_t>(j)]) / ell);
+    }
+  }
+  CHECK(wh.log_det() == doctest::Approx(std::log(r.determinant())));
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(5);
+  CHECK(effective_sample_size(series, x, ell, nugget) == doctest::Approx(ones.dot(r.inverse() * ones)));
+  // the information lies between the pure OU value and n
+  CHECK(effective_sample_size(series, x, ell, nugget) > effective_sample_size(series, x, ell, 0.0));
+  CHECK(effective_sample_size(series, x, ell, nugget) < 5.0);
+}

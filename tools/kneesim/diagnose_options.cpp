@@ -1,5 +1,8 @@
 #include "tools/kneesim/diagnose_options.h"
 
+#include <cmath>
+#include <cstdlib>
+
 #include "engine/errors.h"
 
 namespace kneesim::cli {
@@ -13,6 +16,17 @@ void add_diagnose_common_options(CLI::App* cmd, DiagnoseCommonOptions& o) {
                   "AICc drop against 'none' an effect must exceed")->capture_default_str();
   cmd->add_option("--heldout-threshold", o.heldout_threshold,
                   "relative held-out RMSE drop against 'none' an effect must exceed")
+      ->capture_default_str();
+  cmd->add_option("--noise-model", o.noise_model,
+                  "error model of the fits: white (independent residuals), correlated "
+                  "(residuals correlated along each series; specimen offsets), instrument "
+                  "(correlated plus the instrument's nuisance terms)")
+      ->capture_default_str();
+  cmd->add_option("--noise-param", o.noise_params,
+                  "key=value of the error model (repeatable; the case's report lists its keys, "
+                  "e.g. gain_crosstalk_sd=0.01 for forces, ou=1 to correlate wear residuals)");
+  cmd->add_option("--detection-replicates", o.detection_replicates,
+                  "simulated data sets per detection limit (0: no detection limits)")
       ->capture_default_str();
 }
 
@@ -28,7 +42,23 @@ diagnosis::DiagnosisOptions make_diagnosis_options(const DiagnoseCommonOptions& 
     bad("--heldout-threshold = " + std::to_string(o.heldout_threshold) +
         " is outside the allowed range [0, 1).");
   }
+  if (o.detection_replicates < 0 || o.detection_replicates > 10000) {
+    bad("--detection-replicates = " + std::to_string(o.detection_replicates) +
+        " is outside the allowed range [0, 10000].");
+  }
   diagnosis::DiagnosisOptions d;
+  d.noise_model = o.noise_model;
+  for (const std::string& kv : o.noise_params) {
+    const auto eq = kv.find('=');
+    char* end = nullptr;
+    const double v = eq == std::string::npos ? 0.0 : std::strtod(kv.c_str() + eq + 1, &end);
+    if (eq == std::string::npos || eq == 0 || end == kv.c_str() + eq + 1 || *end != '\0' ||
+        !std::isfinite(v)) {
+      bad("--noise-param '" + kv + "' is not key=value with a number value.");
+    }
+    d.noise_params[kv.substr(0, eq)] = v;
+  }
+  d.detection_replicates = o.detection_replicates;
   d.bootstrap = o.bootstrap;
   d.seed = o.seed;
   d.ic_threshold = o.ic_threshold;

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "analysis/diagnosis/diagnose.h"
 
@@ -16,6 +17,9 @@ struct DiagnoseCommonOptions {
   std::uint64_t seed = 1;            // bootstrap seed [-]
   double ic_threshold = 12.0;        // required AICc drop against none [-]
   double heldout_threshold = 0.05;   // required relative held-out RMSE drop [-]
+  std::string noise_model = "instrument";  // error model: white, correlated, instrument
+  std::vector<std::string> noise_params;   // key=value of the error model
+  int detection_replicates = 20;     // replicates per detection limit, 0: none [-]
 };
 
 void add_diagnose_common_options(CLI::App* cmd, DiagnoseCommonOptions& o);

@@ -151,6 +151,11 @@ DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
   // wear is measured gravimetrically or by profilometry: an absolute error plus a part
   // proportional to the amount (fluid uptake, soak-control correction, calibration)
   c.noise_model = NoiseModel::proportional;
+  // the error model (error_model.h): with specimens, beside the scatter of each specimen's
+  // wear factor, an offset per specimen on its volume rows (the soak-control correction of
+  // that specimen's weighings); the gravimetric error growing with the volume is the
+  // proportional noise line above
+  c.error_model.specimen_offset = true;
   c.candidates = {Effect::running_in, Effect::incubation, Effect::pressure_dependent_wear};
   if (has_depth) c.candidates.push_back(Effect::creep);
 

@@ -1,5 +1,6 @@
 #include "analysis/diagnosis/kinematics_case.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -101,12 +102,52 @@ DiagnosisCase make_kinematics_case(MeasuredData data, std::shared_ptr<Kinematics
   // local fit does not cross zero; the IE torque starts at +1 only (two starts, not four: each
   // start costs up to 40 simulations)
   c.multi_start_effects = {Effect::load_convention};
-  c.effect_params = [](Effect e) {
+  const double mu0 = sim->nominal_friction(), gap0 = sim->nominal_gap_mm();
+  c.effect_params = [mu0, gap0](Effect e) {
     auto specs = effect_info(e).params;
     // above 0.3 the regularized Coulomb slope approaches the explicit stability limit
-    if (e == Effect::friction) specs[0].upper = 0.3;
+    if (e == Effect::friction) specs[0].upper = 0.3, specs[0].null_value = mu0;
+    if (e == Effect::restraint) specs[1].null_value = gap0;
     return specs;
   };
+  // the error model: residuals correlated along the gait cycle within each channel (a
+  // fluoroscopic registration error is smooth over the cycle), and the coupling of the
+  // measured AP to IE through a misplaced rotation centre: the AP of a reference point that
+  // lies r mediolaterally from the rig's IE axis moves by r sin(IE) (prior sd
+  // rotation_centre_sd_mm, default 5 mm: the reference point of the measured frame against
+  // the rig's axis). The registration offsets are the baseline's own parameters.
+  c.fit_control.refit_in_noise_profile = false;
+  c.fit_control.noise_iterations = 3;
+  c.expensive_forward = true;
+  c.series_unit = "% of the gait cycle";
+  c.error_model.correlation = Correlation::ou;
+  {
+    // the measured IE at each AP row's gait %, interpolated (the measured channel is the
+    // regressor: its noise is small against its range)
+    std::vector<double> ie_x, ie_v;
+    for (const auto& m : c.measured.rows) {
+      if (m.quantity == "ie_deg") ie_x.push_back(m.x), ie_v.push_back(m.value);
+    }
+    std::vector<double> sin_ie(c.measured.rows.size(), 0.0);
+    for (size_t i = 0; i < c.measured.rows.size() && ie_x.size() >= 2; ++i) {
+      const auto& m = c.measured.rows[i];
+      if (m.quantity != "ap_mm") continue;
+      size_t k = 1;
+      while (k + 1 < ie_x.size() && ie_x[k] < m.x) ++k;
+      const double t = std::clamp((m.x - ie_x[k - 1]) / (ie_x[k] - ie_x[k - 1]), 0.0, 1.0);
+      sin_ie[i] = std::sin((ie_v[k - 1] + t * (ie_v[k] - ie_v[k - 1])) * M_PI / 180.0);
+    }
+    c.error_model.nuisance = {
+        {"rotation_centre_mm",
+         "mediolateral offset of the measured reference point from the rig's IE axis: AP += r "
+         "sin(IE) [mm]",
+         5.0, "rotation_centre_sd_mm",
+         [sin_ie](const std::vector<int>& rows, const Eigen::VectorXd&) {
+           Eigen::VectorXd v(static_cast<Eigen::Index>(rows.size()));
+           for (size_t i = 0; i < rows.size(); ++i) v[static_cast<Eigen::Index>(i)] = sin_ie[static_cast<size_t>(rows[i])];
+           return v;
+         }}};
+  }
 
   auto measured = std::make_shared<const MeasuredData>(c.measured);
   c.predict = [sim, measured](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep,

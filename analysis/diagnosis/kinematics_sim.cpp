@@ -46,6 +46,13 @@ KinematicsSimulator::KinematicsSimulator(const models::Config& config)
   build_seconds_ = built_.build_seconds;
 }
 
+double KinematicsSimulator::nominal_gap_mm() const {
+  for (const engine::RestraintSpring& s : restraint0_) {
+    if (s.kind == engine::RestraintKind::kTranslational) return s.gap * 1e3;
+  }
+  return 0.0;
+}
+
 std::shared_ptr<const KinematicsTrace> KinematicsSimulator::run(Effect effect,
                                                                 const Eigen::VectorXd& params) {
   std::vector<double> key = {static_cast<double>(effect)};

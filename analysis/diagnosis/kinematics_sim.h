@@ -50,6 +50,10 @@ class KinematicsSimulator {
   std::string equivalent_sets(Effect effect, const Eigen::VectorXd& params) const;
 
   const models::Config& config() const { return config_; }
+  // the model's friction coefficient and AP laxity gap as built (the null values of the
+  // friction and restraint effects) [-] and [mm]
+  double nominal_friction() const { return friction0_; }
+  double nominal_gap_mm() const;
   int simulations() const { return simulations_; }   // evaluations not served by the cache
   double seconds() const { return seconds_; }          // wall time of those evaluations [s]
   double build_seconds() const { return build_seconds_; }  // model build [s]

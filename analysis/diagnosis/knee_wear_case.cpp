@@ -208,6 +208,11 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
   // wear is measured gravimetrically or by profilometry: an absolute error plus a part
   // proportional to the amount (fluid uptake, soak-control correction, calibration)
   c.noise_model = NoiseModel::proportional;
+  // the error model (error_model.h): with specimens, beside the scatter of each specimen's
+  // wear factor, an offset per specimen on its volume rows (the soak-control correction of
+  // that specimen's weighings); the gravimetric error growing with the volume is the
+  // proportional noise line above
+  c.error_model.specimen_offset = true;
   c.candidates = {Effect::running_in, Effect::incubation};
   if (p_hi > 1.05 * p_lo) c.candidates.push_back(Effect::pressure_dependent_wear);
   if (cs_hi > 1.10 * cs_lo && cs_hi > 0.0) c.candidates.push_back(Effect::cross_shear);

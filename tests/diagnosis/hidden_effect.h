@@ -18,8 +18,10 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "analysis/diagnosis/diagnosis_case.h"
 
@@ -43,5 +45,42 @@ struct SyntheticData {
 
 SyntheticData make_synthetic_bor(diagnosis::Effect effect, std::uint64_t seed,
                                  const SyntheticOptions& options = {});
+
+}  // namespace kneesim::test
+
+namespace kneesim::test {
+
+// Block-on-ring data with measurement errors of families that are NOT the fit's error model
+// (issue 27; the fit assumes a proportional sd a + b V, a specimen wear-factor effect and a
+// constant soak-control offset per specimen):
+//   walk        each weighing's error is the previous one's plus a new step (the soak-control
+//               correction accumulates): a random walk over a specimen's measurements, steps of
+//               sd (0.02 mm^3 + 1 % of the volume) / sqrt(2)
+//   soak_drift  a per-specimen uptake error growing with time, o_s sqrt(N / 200 000), o_s of sd
+//               0.04 mm^3, plus white noise of half the usual sd
+//   heavy       Student-t errors with 3 degrees of freedom of the usual sd (outliers)
+//   lognormal   multiplicative errors exp(0.03 z) - 1 plus 0.02 mm^3 white
+// Depth keeps its white noise (2 um + 2 %). Specimen wear factors scatter by 5 % CV. The hidden
+// effect's shape parameters are drawn from the ranges of make_synthetic_bor; its size parameter
+// (running-in excess, pressure exponent, incubation time, creep ratio) is solved so that its
+// identifiable signal (identifiable_signal_rms) is `ratio` times the set's noise RMS (the
+// measured values minus the population model, specimen scatter included, in the diagnosis'
+// RMSE measure).
+enum class WearNoise { walk, soak_drift, heavy, lognormal };
+const char* wear_noise_name(WearNoise n);
+const std::vector<WearNoise>& all_wear_noises();
+
+struct RatioSet {
+  SyntheticData s;
+  double noise_rms = 0.0;   // [rmse_unit]
+  double signal_rms = 0.0;  // [rmse_unit]
+};
+RatioSet make_bor_at_ratio(diagnosis::Effect effect, double ratio, WearNoise kind,
+                           std::uint64_t seed, bool with_depth);
+
+// the size (a parameter between lo and hi, bisected in ln when `log`) at which the increasing
+// function `signal` reaches `target`
+double solve_size(const std::function<double(double)>& signal, double target, double lo,
+                  double hi, bool log);
 
 }  // namespace kneesim::test

@@ -23,9 +23,11 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "analysis/diagnosis/kinematics_sim.h"
 #include "analysis/diagnosis/knee_wear_case.h"
+#include "tests/diagnosis/hidden_effect.h"
 
 namespace kneesim::test {
 
@@ -53,5 +55,48 @@ KneeSynthetic make_synthetic_knee_wear(diagnosis::Effect effect, std::uint64_t s
 std::shared_ptr<diagnosis::KinematicsSimulator> kinematics_test_simulator();
 
 KneeSynthetic make_synthetic_kinematics(diagnosis::Effect effect, std::uint64_t seed);
+
+// Knee wear with measurement errors that are not the fit's error model (issue 27): the design
+// of make_synthetic_knee_wear (four conditions, six specimens, 0.25-3 Mc, specimen wear factors
+// 5 % CV) with the measurement error of one family of tests/diagnosis/hidden_effect.h
+// (WearNoise: walk, soak_drift, heavy, lognormal; volume sd 0.2 mm^3 + 2 %, soak offsets
+// of sd 0.8 mm^3 growing as sqrt(N / 3 Mc), depth white 3 um + 3 %), and the hidden effect's
+// size parameter (running-in excess, pressure exponent, cross-shear gain, creep ratio) solved so
+// that its identifiable signal is `ratio` times the set's noise RMS (measured minus the
+// population model, specimen scatter included)
+struct KneeRatioSet {
+  KneeSynthetic s;
+  double noise_rms = 0.0;
+  double signal_rms = 0.0;
+};
+KneeRatioSet make_knee_wear_at_ratio(diagnosis::Effect effect, double ratio, WearNoise kind,
+                                     std::uint64_t seed, bool with_depth);
+
+// Kinematics with correlated measurement errors (issue 27), families that are NOT the fit's
+// error model (an Ornstein-Uhlenbeck process per channel with a prior-bound rotation-centre
+// term):
+//   registration  registration offsets U(-1, 1) mm and deg (the baseline's offsets absorb them;
+//                 not counted as noise) and a rotation centre r = +-U(3, 8) mm off the rig's IE
+//                 axis: AP += r sin(IE); white 0.1 mm and 0.15 deg
+//   smooth        per channel a Fourier error over the cycle, harmonics 1-3 of amplitude
+//                 0.15/h mm and 0.25/h deg at random phases; white 0.05 mm and 0.08 deg
+//   walk          per channel a random walk over the samples (steps 0.05 mm, 0.08 deg); white
+//                 0.05 mm and 0.08 deg
+// The hidden effect's value is drawn from a test range (friction 0.025-0.045 or 0.11-0.18,
+// restraint stiffness scale 0.35-0.6 or 1.7-3 with gap 1-5 mm), and the noise is scaled so
+// that the effect's identifiable signal is `ratio` times the noise RMS (the diagnosis' RMSE
+// measure). For none, the noise of a ratio-1.2 set with friction 0.035.
+enum class KinematicsNoise { registration, smooth, walk };
+const char* kinematics_noise_name(KinematicsNoise n);
+const std::vector<KinematicsNoise>& all_kinematics_noises();
+
+struct KinematicsSet {
+  KneeSynthetic s;
+  double noise_rms = 0.0;    // of the scaled noise [ap_mm units]
+  double signal_rms = 0.0;   // identifiable signal of the hidden effect [ap_mm units]
+  double scale = 1.0;        // factor on the family's noise [-]
+};
+KinematicsSet make_kinematics_at_ratio(diagnosis::Effect effect, double ratio, KinematicsNoise kind,
+                                       std::uint64_t seed);
 
 }  // namespace kneesim::test

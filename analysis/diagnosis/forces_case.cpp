@@ -12,6 +12,8 @@ namespace kneesim::diagnosis {
 namespace {
 
 constexpr const char* kQuantity = "medial_force_N";
+// the least axial force the rig is driven with, as a fraction of the record's peak [-]
+constexpr double kMinAxialShare = 0.02;
 // largest gap in gait phase the second cycle may have for the cycle-against-cycle rule [%]
 constexpr double kMaxPhaseGap = 10.0;
 
@@ -57,6 +59,11 @@ struct Surrogate {
   std::shared_ptr<ForcesSimulator> sim;
   std::shared_ptr<const MeasuredData> measured;
   std::vector<int> cycle_of_row;
+  std::vector<double> total;   // measured total per row [N]
+  // the predicted medial force of a row: the rig's medial share there times the measured total
+  double medial(const ForcesTrace& t, int row) const {
+    return t.share(measured->rows[static_cast<size_t>(row)].x) * total[static_cast<size_t>(row)];
+  }
   struct Table {
     std::vector<double> values;          // grid [param unit]
     int lo = 0, hi = 0;                  // runnable index range
@@ -101,7 +108,7 @@ struct Surrogate {
         for (int k = 0; k < sim->cycles(); ++k) {
           const auto trace = sim->run(e, t.values[static_cast<size_t>(g)], k);
           for (size_t i = 0; i < measured->rows.size(); ++i) {
-            if (cycle_of_row[i] == k) t.y[i].push_back(trace->at(true, measured->rows[i].x));
+            if (cycle_of_row[i] == k) t.y[i].push_back(medial(*trace, static_cast<int>(i)));
           }
         }
       }
@@ -146,12 +153,36 @@ ForcesMeasured read_forces_measured(const models::Config& config, const std::str
   out.data.x_name = "gait_pct";
   const double ws = L.window_start, we = L.window_end, T = we - ws;
   const double period = L.percent ? config.period_s : T;
-  const loads::Waveform w1 = loads::cycle_waveform(L, rig);
+  // the rig's input: each rig channel low-pass filtered at the cutoff of Winter's residual
+  // analysis (a table in gait percent has no sampling rate: taken as it is)
+  loads::MeasuredLoads filtered = L;
+  if (!L.percent && L.time.size() >= 20) {
+    const double fs = static_cast<double>(L.time.size() - 1) / (L.time.back() - L.time.front());
+    for (const auto& name : rig) {
+      auto& v = filtered.values[static_cast<size_t>(L.channel(name))];
+      const loads::CutoffChoice choice = loads::residual_analysis_cutoff(v, fs);
+      if (choice.cutoff_Hz > 0.0) {
+        v = loads::lowpass(v, fs, choice.cutoff_Hz);
+        out.input_filter[name] = choice;
+      }
+    }
+  }
+  // a rig presses, it cannot pull: a measured total below kMinAxialShare of the record's peak
+  // (the cells' offsets and noise in swing) is held there; below it the femur would lift off
+  // and the simulation stop
+  if (const int ax = filtered.channel("axial_force_N"); ax >= 0) {
+    auto& v = filtered.values[static_cast<size_t>(ax)];
+    const double floor = kMinAxialShare * *std::max_element(v.begin(), v.end());
+    for (double& f : v) f = std::max(f, floor);
+    out.axial_floor_N = floor;
+  }
+  const loads::Waveform w1 = loads::cycle_waveform(filtered, rig);
   out.cycles.push_back({"cycle 1", models::make_gait(config, &w1), period});
   auto add_row = [&](const std::string& group, double phase, size_t i) {
     out.data.rows.push_back({group, "", kQuantity, phase, L.values[static_cast<size_t>(med)][i],
                              L.line[i]});
     out.total_N.push_back(L.values[static_cast<size_t>(tot)][i]);
+    out.time_s.push_back(L.time[i]);
   };
   for (size_t i = 0; i < L.time.size(); ++i) {
     if (L.time[i] >= ws && L.time[i] < we) add_row("cycle 1", 100.0 * (L.time[i] - ws) / T, i);
@@ -176,7 +207,7 @@ ForcesMeasured read_forces_measured(const models::Config& config, const std::str
     for (size_t i = 1; i < other.size(); ++i) gap = std::max(gap, other[i].first - other[i - 1].first);
     if (other.size() >= 8 && gap <= kMaxPhaseGap) {
       out.two_cycles = true;
-      const loads::Waveform w2 = phase_waveform(L, rig, other);
+      const loads::Waveform w2 = phase_waveform(filtered, rig, other);
       out.cycles.push_back({"cycle 2", models::make_gait(config, &w2), period});
       for (const auto& [p, i] : other) add_row("cycle 2", p, i);
     }
@@ -194,12 +225,51 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
       "force-controlled rig of " + (cfg.file.empty() ? std::string("the built-in config") : cfg.file.string()) +
       " as configured (rig " + cfg.rig_preset + ", tibial VV axis " +
       std::to_string(cfg.tibia_pivot_medial_mm).substr(0, 4) + " mm medial, no VV torque), "
-      "driven by each cycle's measured axial force and flexion; medial force = simulated "
-      "axial contact force x the medial share of the condyles' normal forces";
+      "driven by each cycle's measured axial force and flexion, low-pass filtered (Winter's "
+      "residual analysis); medial force = the medial share of the condyles' normal forces x "
+      "the measured total";
   c.noise_model = NoiseModel::per_quantity;
+  // the error model: correlated in time over the record, the cells' offset and drift, and
+  // their gain and crosstalk under the instrument's calibration accuracy
+  c.series_key.assign(c.measured.rows.size(), "record");
+  c.series_x = m.time_s;
+  c.series_unit = m.two_cycles || !m.time_s.empty() ? "s" : "gait_pct";
+  c.error_model.correlation = Correlation::ou;
+  {
+    double t_mid = 0.0;
+    for (double t : m.time_s) t_mid += t / static_cast<double>(m.time_s.size());
+    const std::vector<double> time = m.time_s, total = m.total_N;
+    auto rows_column = [](const std::vector<int>& rows, auto f) {
+      Eigen::VectorXd v(static_cast<Eigen::Index>(rows.size()));
+      for (size_t i = 0; i < rows.size(); ++i) v[static_cast<Eigen::Index>(i)] = f(i, rows[i]);
+      return v;
+    };
+    c.error_model.nuisance = {
+        {"offset_N", "offset of the medial reading (the cells' zero) [N]", 0.0, "",
+         [rows_column](const std::vector<int>& rows, const Eigen::VectorXd&) {
+           return rows_column(rows, [](size_t, int) { return 1.0; });
+         }},
+        {"drift_N_per_s", "linear drift of that offset over the record [N/s]", 0.0, "",
+         [rows_column, time, t_mid](const std::vector<int>& rows, const Eigen::VectorXd&) {
+           return rows_column(rows, [&](size_t, int r) { return time[static_cast<size_t>(r)] - t_mid; });
+         }},
+        {"medial_gain", "gain error of the medial cells, per unit of the predicted medial force "
+                        "[-]", 0.02, "gain_crosstalk_sd",
+         [rows_column](const std::vector<int>& rows, const Eigen::VectorXd& pred) {
+           return rows_column(rows, [&](size_t i, int) { return pred[static_cast<Eigen::Index>(i)]; });
+         }},
+        {"lateral_crosstalk", "crosstalk of the lateral cells into the medial reading, per unit "
+                              "of the predicted lateral force [-]", 0.02, "gain_crosstalk_sd",
+         [rows_column, total](const std::vector<int>& rows, const Eigen::VectorXd& pred) {
+           return rows_column(rows, [&](size_t i, int r) {
+             return total[static_cast<size_t>(r)] - pred[static_cast<Eigen::Index>(i)];
+           });
+         }}};
+  }
   auto sur = std::make_shared<Surrogate>();
   sur->sim = sim;
   sur->measured = std::make_shared<const MeasuredData>(c.measured);
+  sur->total = m.total_N;
   for (const auto& row : c.measured.rows) {
     int k = 0;
     for (int i = 0; i < sim->cycles(); ++i) {
@@ -245,8 +315,7 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
       const int row = idx[i];
       if (e == Effect::none || ep.size() == 0) {
         const auto trace = sur->sim->run(Effect::none, 0.0, sur->cycle_of_row[static_cast<size_t>(row)]);
-        v[static_cast<Eigen::Index>(i)] =
-            trace->ok ? trace->at(true, sur->measured->rows[static_cast<size_t>(row)].x) : NAN;
+        v[static_cast<Eigen::Index>(i)] = trace->ok ? sur->medial(*trace, row) : NAN;
       } else {
         v[static_cast<Eigen::Index>(i)] = sur->at(e, ep[0], row);
       }

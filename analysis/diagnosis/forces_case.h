@@ -11,22 +11,44 @@
 // the same phase (the end of the previous cycle). Each cycle is simulated with its own loads.
 //
 // Forward model: ForcesSimulator (forces_sim.h), one simulation per cycle and parameter value.
+// The rig is driven by the measured total and flexion low-pass filtered at the cutoff of
+// Winter's residual analysis (loads/iso14243/lowpass.h): the rig follows the gait, not the
+// cells' noise; and not below 2 % of the record's peak total (a rig presses, it cannot pull:
+// the cells' offsets and noise in swing would lift the femur off). The predicted medial force of a row is the rig's medial share at that phase
+// times the row's MEASURED total: the measured total enters the prediction once, as it enters
+// the trivial predictor (the mean share times the measured total), so the cells' noise common
+// to the medial reading and the total cancels alike in both; driving the rig with the raw
+// total instead fed that noise through the rig's dynamics into the share and the prediction
+// (on clean synthetic sets with realistic noise the rig then lost to the trivial predictor,
+// 27.6 against 20.7 N and 54.9 against 17.0 N RMS).
 // The fits evaluate each candidate on a grid of full simulations across its parameter bounds
 // and interpolate between grid points (cubic, per sample); the chosen fit is checked with a
 // direct simulation at the fitted value (surrogate_rms_N in the report).
 // Baseline: the rig as configured, no parameter refitted (the practitioner's rig offset).
+// Error model (error_model.h, "instrument"): the residuals of the record are correlated in
+// time (Ornstein-Uhlenbeck, one series over the whole record); nuisance terms of the load
+// cells: an offset and a linear drift of the medial reading (free), and the gain of the medial
+// cells and the crosstalk of the lateral cells into the medial reading, each a fraction of the
+// predicted medial or lateral force with a Gaussian prior of sd gain_crosstalk_sd (default
+// 0.02: instrumented implants measure to 1-2 % of their calibration range including crosstalk,
+// Bergmann et al., J Biomech Eng 130(2):021009, 2008; a fraction of the force here, an
+// approximation). A constant load-line shift moves the
+// medial share by a constant amount, as those two terms do, so below a size set by the prior
+// it cannot be told from the instrument; the detection limit reports that size.
 // Held-out rule: fit on one cycle, predict the other, both ways; with a single cycle in the
 // file, interleaved 10 % gait-phase blocks (fit on the even blocks, predict the odd, and back).
 // The quantity fitted is the medial force (the total is the rig's input; the lateral force is
 // its complement); the report also gives the lateral force and the medial share.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "analysis/diagnosis/diagnosis_case.h"
 #include "analysis/diagnosis/forces_sim.h"
+#include "loads/iso14243/lowpass.h"
 #include "models/config.h"
 
 namespace kneesim::diagnosis {
@@ -35,7 +57,13 @@ struct ForcesMeasured {
   MeasuredData data;                  // medial_force_N rows, group = cycle name
   std::vector<ForcesCycle> cycles;    // the rig's loads per cycle
   std::vector<double> total_N;        // measured total axial force per row [N]
+  std::vector<double> time_s;         // time of each row in the record [s] (gait % for a
+                                      // table in percent)
   bool two_cycles = true;             // false: one cycle, phase-block held-out rule
+  // the rig channels' low-pass filter: cutoff [Hz] and the noise RMS estimate of the residual
+  // analysis, per channel (empty for a table in gait percent: not filtered)
+  std::map<std::string, loads::CutoffChoice> input_filter;
+  double axial_floor_N = 0.0;         // least axial force the rig is driven with [N]
 };
 
 // reads `file` (the config's gait.measured.file when empty) with the config's column spec;

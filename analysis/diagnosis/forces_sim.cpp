@@ -41,6 +41,11 @@ double ForcesTrace::at(bool medial, double pct) const {
   return y[i - 1] + t * (y[i] - y[i - 1]);
 }
 
+double ForcesTrace::share(double pct) const {
+  const double m = at(true, pct), l = at(false, pct);
+  return m + l > 0.0 ? m / (m + l) : 0.5;
+}
+
 ForcesSimulator::ForcesSimulator(const models::Config& config, std::vector<ForcesCycle> cycles)
     : config_(config), built_(models::build_model(config)), cycles_(std::move(cycles)) {
   tibia_vv_mode0_ = built_.model.carriages[1].dofs[3].mode;

@@ -44,6 +44,8 @@ struct ForcesTrace {
   std::string failure;             // why, when !ok
   // medial or lateral force at gait % (linear, periodic) [N]
   double at(bool medial, double pct) const;
+  // medial share of the axial contact force at gait % (0.5 where the condyles carry nothing)
+  double share(double pct) const;
 };
 
 // one measured cycle as the rig is driven: the config's gait with the cycle's measured channels

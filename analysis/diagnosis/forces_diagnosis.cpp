@@ -105,6 +105,12 @@ ForcesDiagnosisReport run_forces_diagnosis(const ForcesDiagnosisOptions& o) {
   sim->set_threads(o.threads);
   const DiagnosisCase c = make_forces_case(measured, sim, o.case_options);
   ForcesDiagnosisReport rep = diagnose_forces(c, *sim, measured.total_N, o.options);
+  // the rig's input filter (forces_case.h): cutoff and noise estimate per channel
+  rep.extra["input_filter"] = nlohmann::json::object();
+  for (const auto& [name, f] : measured.input_filter) {
+    rep.extra["input_filter"][name] = {{"cutoff_Hz", f.cutoff_Hz}, {"noise_rms", f.noise_rms}};
+  }
+  rep.extra["axial_floor_N"] = measured.axial_floor_N;
   const DiagnosisResult& r = rep.result;
   rep.summary_line = write_diagnosis(c, r, o.out);
   // the forces keys beside the shared ones in diagnosis.json
@@ -121,6 +127,17 @@ ForcesDiagnosisReport run_forces_diagnosis(const ForcesDiagnosisOptions& o) {
     md += "| " + it.key() + " | " + fmt("%.3f", it.value()["measured"].get<double>()) + " | " +
           fmt("%.3f", it.value()["baseline"].get<double>()) + " | " +
           fmt("%.3f", it.value()["extended"].get<double>()) + " |\n";
+  }
+  if (!x["input_filter"].empty()) {
+    md += "\nThe rig's input channels, low-pass filtered (zero-lag Butterworth, cutoff by "
+          "Winter's residual analysis; the residual line's intercept estimates the channel's "
+          "noise):";
+    for (auto it = x["input_filter"].begin(); it != x["input_filter"].end(); ++it) {
+      md += " " + it.key() + " " + fmt("%.2f", it.value()["cutoff_Hz"].get<double>()) +
+            " Hz (noise " + fmt("%.3g", it.value()["noise_rms"].get<double>()) + ");";
+    }
+    md += " the axial force held at " + fmt("%.1f", x["axial_floor_N"].get<double>()) +
+          " N at least (2 % of the record's peak).\n";
   }
   if (!x["at_bound"].empty()) {
     md += "\nFits at a search bound (flagged, never named): " + x["at_bound"].dump() + ".\n";

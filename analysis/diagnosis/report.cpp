@@ -65,8 +65,12 @@ std::string error_model_markdown(const DiagnosisResult& r) {
     parts.push_back("residuals correlated along each series (Ornstein-Uhlenbeck plus a white "
                     "part, profiled: correlation length " + num(none.noise.ell) + " " +
                     r.series_unit + " and white fraction " + num(none.noise.nugget, "%.2f") +
-                    " for none, " + num(e.noise.ell) + " and " + num(e.noise.nugget, "%.2f") +
-                    " for " + std::string(effect_name(e.effect)) + ")");
+                    " for none" +
+                    (e.effect == Effect::none
+                         ? std::string()
+                         : ", " + num(e.noise.ell) + " and " + num(e.noise.nugget, "%.2f") +
+                               " for " + std::string(effect_name(e.effect))) +
+                    ")");
   }
   if (r.specimens) {
     parts.push_back(std::string("specimen random effects (wear factor") +
@@ -78,18 +82,22 @@ std::string error_model_markdown(const DiagnosisResult& r) {
   for (size_t i = 0; i < parts.size(); ++i) md += (i ? "; " : "") + parts[i];
   md += ". Effective sample size of AICc's small-sample term " + num(none.noise.n_eff, "%.1f") +
         " of " + std::to_string(none.predictions.size()) + " measurements; the error model "
-        "counts " + std::to_string(none.noise.parameters) + " parameters in every candidate.\n";
+        "counts " + std::to_string(none.noise.parameters) +
+        (none.noise.parameters == 1 ? " parameter" : " parameters") + " in every candidate.\n";
+  const bool named = e.effect != Effect::none;
   if (!r.error_model.nuisance.empty()) {
     md += "\nNuisance terms (fitted with every model on its training rows, applied to the "
           "held-out rows; reported, never named as causes):\n\n| term | prior sd | none | " +
-          std::string(effect_name(e.effect)) + " | meaning |\n|---|---|---|---|---|\n";
+          (named ? std::string(effect_name(e.effect)) + " | " : std::string()) + "meaning |\n|---|---|---|" +
+          (named ? "---|" : "") + "---|\n";
     for (size_t k = 0; k < r.error_model.nuisance.size(); ++k) {
       const auto& t = r.error_model.nuisance[k];
       const auto kk = static_cast<Eigen::Index>(k);
       md += "| " + t.name + " | " + (t.prior_sd > 0.0 ? num(t.prior_sd) + " (`" + t.prior_key + "`)"
                                                      : std::string("free")) +
             " | " + (kk < none.nuisance.size() ? num(none.nuisance[kk]) : std::string("-")) + " | " +
-            (kk < e.nuisance.size() ? num(e.nuisance[kk]) : std::string("-")) + " | " +
+            (named ? (kk < e.nuisance.size() ? num(e.nuisance[kk]) : std::string("-")) + " | "
+                   : std::string()) +
             t.description + " |\n";
     }
   }

@@ -118,6 +118,45 @@ void ReportPage::add_numbers(const std::string& heading, std::vector<KeyNumber> 
   body_ += s;
 }
 
+void ReportPage::add_number_table(const std::string& heading,
+                                  const std::vector<std::string>& names,
+                                  const std::vector<std::vector<KeyNumber>>& columns,
+                                  const std::string& note) {
+  std::vector<std::pair<std::string, std::string>> rows;  // label, unit in first-seen order
+  for (const auto& col : columns) {
+    for (const KeyNumber& k : col) {
+      bool seen = false;
+      for (const auto& r : rows) seen = seen || r.first == k.label;
+      if (!seen) rows.push_back({k.label, k.unit});
+    }
+  }
+  std::string s = "<section><h2>" + html_escape(heading) + "</h2>";
+  if (!note.empty()) s += "<p class=\"note\">" + html_escape(note) + "</p>";
+  s += "<table><tr><th></th><th>unit</th>";
+  for (const auto& n : names) s += "<th>" + html_escape(n) + "</th>";
+  s += "</tr>\n";
+  for (const auto& [label, unit] : rows) {
+    s += "<tr><td>" + html_escape(label) + "</td><td>" + html_escape(unit) + "</td>";
+    for (const auto& col : columns) {
+      const KeyNumber* k = nullptr;
+      for (const KeyNumber& c : col) {
+        if (c.label == label) k = &c;
+      }
+      if (!k) {
+        s += "<td class=\"num\">-</td>";
+        continue;
+      }
+      char scale[32];
+      std::snprintf(scale, sizeof scale, "%.17g", k->scale);
+      s += "<td class=\"num\" data-key=\"" + html_escape(k->pointer) + "\" data-scale=\"" +
+           scale + "\">" + format_number(k->value, k->decimals) + "</td>";
+    }
+    s += "</tr>\n";
+  }
+  s += "</table></section>\n";
+  body_ += s;
+}
+
 void ReportPage::set_scene(Scene3D scene) {
   if (scene.empty()) return;
   scene_ = std::move(scene);

@@ -61,6 +61,11 @@ class ReportPage {
  public:
   ReportPage(std::string title, std::string subtitle);
   void add_numbers(const std::string& heading, std::vector<KeyNumber> numbers);
+  // side by side: one row per quantity, one column per entry (e.g. material); `columns[c][r]`
+  // is row r of column c (rows matched by label; a missing one shows "-")
+  void add_number_table(const std::string& heading, const std::vector<std::string>& names,
+                        const std::vector<std::vector<KeyNumber>>& columns,
+                        const std::string& note = "");
   // the 3D view (one per page); an empty scene adds nothing
   void set_scene(Scene3D scene);
   void add_plots(const std::string& heading, const std::vector<PlotSpec>& plots,

@@ -175,12 +175,17 @@ void write_run_report(const std::filesystem::path& out, const Provenance& proven
   }
   page.add_plots("Kinematics: joint coordinates (tibia relative to femur)", kin,
                  "Last gait cycle, from kinematics.csv (one row per 1 % of the cycle).");
+  PlotSpec loads = gait_plot("Axial load and contact force", "force (N)", k,
+                             {{"axial_force_N", "applied axial load"},
+                              {"contact_axial_force_N", "contact force, axial"}},
+                             true);
+  if (!loads.series.empty()) {
+    loads.series[0].dashed = true;  // the contact force follows the load closely: both seen
+    loads.series[0].colour = "#000";
+  }
   page.add_plots(
       "Loads and contact",
-      {gait_plot("Axial load and contact force", "force (N)", k,
-                 {{"axial_force_N", "applied axial load"},
-                  {"contact_axial_force_N", "contact force, axial"}},
-                 true),
+      {loads,
        gait_plot("Contact pressure", "pressure (MPa)", k,
                  {{"peak_pressure_MPa", "peak"}, {"mean_pressure_MPa", "mean"}}, true),
        gait_plot("Contact area", "area (mm\u00b2)", k,

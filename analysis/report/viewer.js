@@ -87,7 +87,7 @@
     box.getSize(size);
     var r = Math.max(size.x, size.y, size.z);
     var camera = new THREE.PerspectiveCamera(35, canvas.clientWidth / canvas.clientHeight || 1.52, r / 50, r * 50);
-    camera.position.set(centre.x + 0.8 * r, centre.y + 1.05 * r, centre.z + 0.65 * r);
+    camera.position.set(centre.x + 0.9 * r, centre.y + 1.2 * r, centre.z + 0.75 * r);
     var controls = new THREE.OrbitControls(camera, canvas);
     controls.target.copy(centre);
     controls.update();

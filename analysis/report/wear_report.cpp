@@ -223,16 +223,23 @@ void write_compare_report(const std::filesystem::path& out, const Provenance& pr
                       text_of(first, "rig_preset") + ") and gait for every material; " +
                       std::to_string(first.value("updates", 0)) + " geometry updates; wear law " +
                       text_of(first, "wear_law") + ".");
+  std::vector<std::vector<KeyNumber>> columns;
+  std::string dependent;
   for (const std::string& m : materials) {
-    std::vector<KeyNumber> n;
-    wear_numbers(n, all, "/" + m);
-    const nlohmann::json& r = all[m];
-    const bool independent = r.value("wear_factor_independent", true);
-    page.add_numbers(m + " (comparison.json)" +
-                         (independent ? "" : ": wear factor not independent, volume not a "
-                                             "prediction (see the break-even)"),
-                     n);
+    columns.emplace_back();
+    wear_numbers(columns.back(), all, "/" + m);
+    if (!all[m].value("wear_factor_independent", true)) {
+      dependent += (dependent.empty() ? "" : ", ") + m;
+    }
   }
+  page.add_number_table(
+      "Key numbers side by side (comparison.json)", materials, columns,
+      "New insert: the pristine cycle's figures; worn insert: the cycle on the final geometry." +
+          (dependent.empty()
+               ? std::string()
+               : " The wear factor of " + dependent +
+                     " is not independent of kneesim's comparisons: its volume is not a "
+                     "prediction (see the break-even ratios)."));
   if (!scenes.empty() && !scenes.front().empty()) {
     Scene3D s = scenes.front();
     s.fields.clear();

@@ -196,9 +196,16 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
     throw std::runtime_error("the run's outputs are not finite (" + bad + "); the frames are "
                              "in " + (out / "kinematics.partial.csv").string());
   }
+  // the title context of the PNG plots: material, geometry, cycles
+  const std::string context = built.material.name + ", new insert, last of " +
+                              std::to_string(config.cycles) + " cycle" +
+                              (config.cycles == 1 ? "" : "s");
+  std::vector<std::string> map_plot_args = {(out / "pressure_maps.png").string(),
+                                            "Contact pressure, top view: " + context};
   for (size_t i = 0; i < result.maps.size(); ++i) {
     char name[64];
     std::snprintf(name, sizeof name, "pressure_%03.0fpct.vtp", options.map_pcts[i]);
+    map_plot_args.push_back((out / name).string());
     if (solid) {
       write_solid_pressure_map(out / name, built.model, result.maps[i], state, *tracker);
     } else {
@@ -225,7 +232,11 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
     plot_args.push_back("--measured");
     plot_args.push_back((out / "measured_kinematics.csv").string());
   }
+  plot_args.push_back("--context");
+  plot_args.push_back(context);
   if (job.plots) io::run_plot("kinematics.py", plot_args);
+  // the rigid insert's maps (the deformable insert's are per node: ParaView)
+  if (job.plots && !solid && !result.maps.empty()) io::run_plot("pressure_maps.py", map_plot_args);
   io::write_json(out / "summary.json", summary);  // its presence marks a complete run
   // the report reads the files just written, so it shows what they say
   if (job.report) report::write_run_report(out, *job.report, scene->make_scene(built));

@@ -463,7 +463,8 @@ nlohmann::json run_wear_job(const WearJob& j) {
   io::write_csv(j.out / "kinematics.csv", make_kinematics_table(result.frames));
   if (j.plots) {
     io::run_plot("wear.py", {(j.out / "wear.csv").string(), (j.out / "final_depth.csv").string(),
-                             (j.out / "wear.png").string(), (j.out / "depth_map.png").string()});
+                             (j.out / "wear.png").string(), (j.out / "depth_map.png").string(),
+                             mat.name});
   }
   // a resumed run may follow a failed one: no failure record stays beside the summary
   fs::remove(j.out / "summary.failed.json");

@@ -1,5 +1,7 @@
-// A one-line progress bar on stderr, drawn only when stderr is a terminal and the run has
-// lasted longer than `delay_s` (short runs stay quiet). Redraws at most ten times a second.
+// Progress on stderr once the run has lasted longer than `delay_s` (short runs stay quiet):
+// on a terminal a one-line bar redrawn at most ten times a second; otherwise (a log file, a
+// pipe, a batch job) a line "label: 40 % done, 96 s elapsed, about 144 s left" each time the
+// run passes another 10 % or every 30 s, whichever comes first, but at most one per 5 s.
 #pragma once
 
 #include <chrono>
@@ -9,7 +11,8 @@ namespace kneesim::io {
 
 class ProgressBar {
  public:
-  explicit ProgressBar(std::string label, double delay_s = 1.5);
+  // min_gap_s: the least time between two log lines (tests shorten it)
+  explicit ProgressBar(std::string label, double delay_s = 1.5, double min_gap_s = 5.0);
   ~ProgressBar();
   // fraction in [0, 1]
   void update(double fraction);
@@ -21,9 +24,14 @@ class ProgressBar {
   std::string label_;
   std::string detail_;
   double delay_s_;
-  bool enabled_;
+  double min_gap_s_;
+  bool enabled_;           // stderr is a terminal: the bar
+  bool log_lines_;         // it is not: a line now and then
+  int logged_tenths_ = 0;  // the last 10 % step a line reported
   bool drawn_ = false;
-  std::chrono::steady_clock::time_point start_, last_draw_;
+  std::chrono::steady_clock::time_point start_, last_draw_, last_line_;
+
+  void log_line(double fraction, double elapsed);
 };
 
 }  // namespace kneesim::io

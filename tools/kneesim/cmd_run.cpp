@@ -3,9 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "analysis/report/provenance.h"
 #include "analysis/run/gait_run.h"
+#include "engine/io/plot.h"
 #include "tools/kneesim/commands.h"
 
 namespace kneesim::cli {
@@ -54,7 +56,12 @@ void run(const RunArgs& a) {
       }
     };
   }
+  // one plotting interpreter for the kinematics and pressure-map plots, loading matplotlib
+  // while the cycles run
+  std::optional<io::PlotSession> plots;
+  if (job.plots) plots.emplace();
   const run::GaitRunReport r = run::run_gait_job(job);
+  plots.reset();
   if (!a.quiet) {
     const run::CycleFigures& fig = r.figures;
     std::printf("AP ROM %.2f mm, IE ROM %.2f deg, peak pressure %.1f MPa, peak contact force "
@@ -74,15 +81,15 @@ void add_run_command(CLI::App& app) {
       "run",
       "Simulate gait cycles of the force-controlled rig (default: built-in generic TKR, "
       "stanmore rig, ISO 14243-1-shaped gait, UHMWPE insert). Writes DIR/kinematics.csv (one "
-      "row per 1 % of the last cycle), DIR/summary.json, DIR/pressure_<pct>pct.vtp (ParaView) "
-      "DIR/kinematics.png (unless --no-plots) and DIR/report.html (unless --no-report: key "
-      "numbers, a 3D view of insert and femoral component coloured by contact pressure over the "
-      "cycle, the plots and the provenance, one file that opens offline). With --set insert=deformable the insert is a "
-      "hex8 solid (docs/deformable.md): the pressure maps carry node pressures and element stresses, "
-      "DIR/insert_stress.vtu the von Mises maximum over the cycle and the plastic strain per "
-      "element, summary.json the surface/subsurface maxima and the kinetic/internal energy "
-      "ratio; an inverted element stops the run (exit 1) keeping "
-      "DIR/insert_stress.partial.vtu.");
+      "row per 1 % of the last cycle), DIR/summary.json, DIR/pressure_<pct>pct.vtp (ParaView), "
+      "DIR/kinematics.png and DIR/pressure_maps.png (unless --no-plots) and DIR/report.html "
+      "(unless --no-report: key numbers, a 3D view of insert and femoral component coloured by "
+      "contact pressure over the cycle, the plots and the provenance, one file that opens "
+      "offline). With --set insert=deformable the insert is a hex8 solid (docs/deformable.md): "
+      "the pressure maps carry node pressures and element stresses, DIR/insert_stress.vtu the "
+      "von Mises maximum over the cycle and the plastic strain per element, summary.json the "
+      "surface/subsurface maxima and the kinetic/internal energy ratio; an inverted element "
+      "stops the run (exit 1) keeping DIR/insert_stress.partial.vtu.");
   cmd->add_option("config", args->config, "TOML config file (every key defaulted)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
@@ -94,7 +101,8 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--measured", args->measured,
                   "measured kinematics (CSV gait_pct,ap_mm,ie_deg or .sto) to overlay in the plot");
   cmd->add_flag("--no-plots", args->no_plots,
-                "skip DIR/kinematics.png (the CSV, JSON and VTK results are the same)");
+                "skip DIR/kinematics.png and DIR/pressure_maps.png (the CSV, JSON and VTK results "
+                "are the same)");
   cmd->add_flag("--no-report", args->no_report,
                 "skip DIR/report.html (one self-contained page: key numbers, 3D pressure view, "
                 "plots, provenance)");

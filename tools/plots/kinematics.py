@@ -1,6 +1,8 @@
-"""AP and IE of the tibial carriage over the gait cycle, with an optional measured overlay.
+"""AP and IE over the gait cycle as joint coordinates (the tibia relative to the femur), with an
+optional measured overlay.
 
-usage: kinematics.py KINEMATICS.csv OUT.png [--measured MEASURED.csv]
+usage: kinematics.py KINEMATICS.csv OUT.png [--measured MEASURED.csv] [--context TEXT]
+(TEXT, e.g. "UHMWPE, new insert, last of 2 cycles", completes the title)
 (the measured CSV has gait_pct, ap_mm, ie_deg in the project convention; `kneesim run`
 writes it from a CSV or .sto input)
 """
@@ -19,6 +21,11 @@ def main():
         i = args.index("--measured")
         measured = read_csv(args[i + 1])
         del args[i:i + 2]
+    context = ""
+    if "--context" in args:
+        i = args.index("--context")
+        context = args[i + 1]
+        del args[i:i + 2]
     sim = read_csv(args[0])
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
     ax1.plot(sim["gait_pct"], sim["ap_mm"], label="kneesim")
@@ -32,7 +39,8 @@ def main():
     for ax in (ax1, ax2):
         ax.grid(alpha=0.3)
         ax.legend()
-    ax1.set_title("Tibial carriage kinematics")
+    ax1.set_title("Joint coordinates, tibia relative to femur" + (": " + context if context else ""),
+                  fontsize=10)
     fig.tight_layout()
     save_figure(fig, args[1])
 

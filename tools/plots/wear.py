@@ -1,6 +1,7 @@
 """Wear against cycles, and a top view of the final wear depth on the insert.
 
-usage: wear.py WEAR.csv FINAL_DEPTH.csv WEAR.png DEPTH_MAP.png
+usage: wear.py WEAR.csv FINAL_DEPTH.csv WEAR.png DEPTH_MAP.png [MATERIAL]
+(the titles name the material and the cycles of the last row of WEAR.csv)
 """
 from plotio import read_columns as read_csv, save_figure
 import sys
@@ -13,8 +14,10 @@ def main():
     import matplotlib.tri as mtri
 
     wear_csv, depth_csv, wear_png, map_png = sys.argv[1:5]
+    material = sys.argv[5] if len(sys.argv) > 5 else "insert"
     w = read_csv(wear_csv)
     mc = [c * 1e-6 for c in w["cycles"]]
+    cycles = "{:,.0f}".format(w["cycles"][-1]).replace(",", " ")
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
     ax1.plot(mc, w["volume_mm3"], "o-", label="total (enclosed volume)")
     ax1.plot(mc, w["medial_volume_mm3"], "s--", label="medial")
@@ -27,6 +30,7 @@ def main():
     ax2.set_xlabel("cycles (millions)")
     ax2.set_ylabel("maximum linear wear (mm)")
     ax2.grid(alpha=0.3)
+    fig.suptitle("Wear of the %s insert over %s cycles" % (material, cycles), fontsize=11)
     fig.tight_layout()
     save_figure(fig, wear_png)
 
@@ -38,7 +42,8 @@ def main():
     ax.set_xlabel("medial  <-  z (mm)  ->  lateral")
     ax.set_ylabel("posterior  <-  x (mm)  ->  anterior")
     ax.set_aspect("equal")
-    ax.set_title("Final wear depth, top view of the insert")
+    ax.set_title("Wear depth of the %s insert after %s cycles (worn), top view" % (material, cycles),
+                 fontsize=10)
     fig.tight_layout()
     save_figure(fig, map_png)
 

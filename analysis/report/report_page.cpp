@@ -197,6 +197,11 @@ void ReportPage::add_text(const std::string& heading, const std::string& text) {
            "</p></section>\n";
 }
 
+void ReportPage::add_preformatted(const std::string& heading, const std::string& text) {
+  body_ += "<section><h2>" + html_escape(heading) + "</h2><pre>" + html_escape(text) +
+           "</pre></section>\n";
+}
+
 void ReportPage::set_provenance(Provenance p) { prov_ = std::move(p); }
 
 std::string ReportPage::html(const std::filesystem::path& three_dir) const {
@@ -255,6 +260,7 @@ y superior, z lateral for a right knee; millimetres.</div>
   row("overrides (--set)", sets.empty() ? "(none)" : sets);
   prov += "</table>\n<h3 style=\"font-size:15px\">Input files</h3><table><tr><th>role</th>"
           "<th>file</th><th>SHA-256</th></tr>\n";
+  if (prov_.inputs.empty()) prov += "<tr><td colspan=\"3\">(none)</td></tr>\n";
   for (const InputFile& f : prov_.inputs) {
     prov += "<tr><td>" + html_escape(f.role) + "</td><td><code>" + html_escape(f.path) +
             "</code></td><td><code>" + html_escape(f.sha256.empty() ? "(unreadable)" : f.sha256) +

@@ -73,6 +73,7 @@ class ReportPage {
   void add_table(const std::string& heading, const TableBlock& table,
                  const std::string& note = "");
   void add_text(const std::string& heading, const std::string& text);  // escaped, <p>
+  void add_preformatted(const std::string& heading, const std::string& text);  // <pre>
   void set_provenance(Provenance p);
   // the page; `three_dir` holds three.min.js and examples/js/controls/OrbitControls.js
   std::string html(const std::filesystem::path& three_dir) const;

@@ -42,6 +42,9 @@ CASES = {
     "wear": ["wear", "--cycles", "1000000", "--update-every", "250000", "--no-plots"],
     "compare": ["compare", "--cycles", "500000", "--update-every", "250000", "--no-plots",
                 "--no-break-even"],
+    # the commands without a 3D view share one page builder (analysis/report/summary_report.h)
+    "bor": ["bor"],
+    "study": ["study", "--method", "lhs", "--trials", "3", "--quiet"],
 }
 
 # the file whose numbers the page shows (summary.json unless named here)

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/errors.h"
+#include "analysis/report/command_reports.h"
 #include "engine/io/json_out.h"
 #include "engine/io/plot.h"
 #include "engine/io/table.h"
@@ -166,6 +167,7 @@ void run_bor(const BorOptions& o) {
   s["seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   io::write_json(out / "summary.json", s);
+  report::write_bor_report(out);
   io::run_plot("bor.py", {(out / "bor.csv").string(), (out / "bor.png").string(),
                           "load " + fmt("%g", o.load_N) + " N, " + std::string(s["effect"]) +
                               (fe ? ", FE model" : "")});

@@ -22,6 +22,7 @@
 #include "engine/io/plot.h"
 #include "engine/io/table.h"
 #include "models/contact_law_file.h"
+#include "analysis/report/command_reports.h"
 #include "tools/kneesim/commands.h"
 
 namespace kneesim::cli {
@@ -161,6 +162,7 @@ void calibrate(const CalibrateArgs& a) {
                             {"rigid_calibrated", calibrated_seconds}};
   s["rigid_over_deformable_time"] = deformable_seconds > 0 ? rigid_seconds / deformable_seconds : 0.0;
   io::write_json(out / "summary.json", s);
+  report::write_calibrate_report(out, a.material);
   io::run_plot("calibrate.py", {(out / "comparison.csv").string(),
                                 (out / "calibration.png").string(), a.material});
   const auto held = run::compare_traces(calibrated, deformable, kHeldLo, kHeldHi);

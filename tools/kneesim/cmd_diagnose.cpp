@@ -11,6 +11,7 @@
 #include "analysis/diagnosis/diagnosis_output.h"
 #include "engine/errors.h"
 #include "engine/io/output_folder.h"
+#include "analysis/report/command_reports.h"
 #include "tools/kneesim/bor_options.h"
 #include "tools/kneesim/commands.h"
 #include "tools/kneesim/diagnose_forces.h"
@@ -47,6 +48,7 @@ void run_diagnose_bor(const DiagnoseBorOptions& o) {
   const auto c = diagnosis::make_bor_case(diagnosis::read_bor_measured(o.measured), bo);
   const auto r = diagnosis::diagnose(c, options);
   std::printf("%s", diagnosis::write_diagnosis(c, r, o.common.out).c_str());
+  report::write_diagnosis_report(o.common.out, "bor");
 }
 
 void add_diagnose_bor(CLI::App* diagnose) {

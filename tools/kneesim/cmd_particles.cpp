@@ -20,6 +20,7 @@
 #include "models/build_model.h"
 #include "models/config.h"
 #include "engine/io/output_folder.h"
+#include "analysis/report/command_reports.h"
 #include "tools/kneesim/commands.h"
 #include "wear/particles/fft.h"
 #include "wear/particles/particle_model.h"
@@ -228,6 +229,7 @@ void run_particles(const ParticlesOptions& o) {
   j["section_dz_nm"] = c.dz * 1e9;
   j["dx_nm"] = c.grid.dx * 1e9;
   io::write_json(dir / "summary.json", j);
+  report::write_particles_report(dir);
 
   std::printf("%s at %g N: %ld particles in %zu iterations (%s), mean eq. radius %.0f nm, "
               "length %.0f nm, width %.0f nm, thickness %.0f nm (volume-weighted radius %.0f nm, "

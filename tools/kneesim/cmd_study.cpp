@@ -10,6 +10,7 @@
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/output_folder.h"
+#include "analysis/report/command_reports.h"
 #include "tools/kneesim/commands.h"
 #include "wear/checkpoint.h"
 
@@ -76,6 +77,7 @@ void run(const StudyArgs& a) {
                  problem.variables.size(), a.method.c_str(), ranks.size());
   }
   const study::StudyResult r = study::run_study(problem, o, ranks);
+  if (ranks.rank() == 0) report::write_study_report(a.out, a.method);
   if (!o.quiet) {
     std::printf("%zu trials (%ld failed, %ld resumed) in %.1f s, %.2f trials/s\nresults in %s\n",
                 r.records.size(), r.failed, r.resumed, r.seconds,

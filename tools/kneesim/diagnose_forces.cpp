@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <memory>
 
+#include "analysis/report/command_reports.h"
+
 #include "analysis/diagnosis/forces_diagnosis.h"
 #include "engine/io/output_folder.h"
 #include "tools/kneesim/diagnose_options.h"
@@ -21,6 +23,7 @@ void run_diagnose_forces(DiagnoseForcesOptions o) {
   o.run.out = o.common.out;
   const diagnosis::ForcesDiagnosisReport r = diagnosis::run_forces_diagnosis(o.run);
   std::printf("%s", r.summary_line.c_str());
+  report::write_diagnosis_report(o.common.out, "forces");
   std::printf("forces: %d simulations in %.1f s, total %.1f s\n", r.simulations, r.sim_seconds,
               r.total_seconds);
 }

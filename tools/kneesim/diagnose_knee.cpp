@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <memory>
 
+#include "analysis/report/command_reports.h"
+
 #include "analysis/diagnosis/knee_diagnosis.h"
 #include "engine/io/output_folder.h"
 #include "tools/kneesim/diagnose_options.h"
@@ -21,6 +23,7 @@ void run_diagnose_knee_wear(const DiagnoseKneeWearOptions& o) {
   ro.out = o.common.out;
   const diagnosis::KneeWearDiagnosisReport r = diagnosis::run_knee_wear_diagnosis(ro);
   std::printf("%s", r.summary_line.c_str());
+  report::write_diagnosis_report(o.common.out, "knee-wear");
   std::printf("knee-wear: %zu conditions simulated in %.1f s, total %.1f s\n", r.conditions,
               r.sim_seconds, r.total_seconds);
   if (!r.check.is_null() && r.check["status"] == "complete") {
@@ -43,6 +46,7 @@ void run_diagnose_kinematics(const DiagnoseKinematicsOptions& o) {
   ro.out = o.common.out;
   const diagnosis::KinematicsDiagnosisReport r = diagnosis::run_kinematics_diagnosis(ro);
   std::printf("%s", r.summary_line.c_str());
+  report::write_diagnosis_report(o.common.out, "kinematics");
   std::printf("kinematics: %d simulations in %.1f s, total %.1f s\n", r.simulations,
               r.sim_seconds, r.total_seconds);
 }

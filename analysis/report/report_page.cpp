@@ -59,7 +59,7 @@ td,th{padding:3px 10px;border-bottom:1px solid #eee;text-align:left;vertical-ali
 th{background:#f0f2f5;font-weight:600}
 td.num{text-align:right;font-variant-numeric:tabular-nums;font-weight:600}
 .numbers{display:grid;grid-template-columns:repeat(auto-fill,minmax(260px,1fr));gap:6px 18px}
-.kn{display:flex;justify-content:space-between;border-bottom:1px solid #eee;padding:3px 0;font-size:14px}
+.kn{display:flex;justify-content:space-between;gap:8px;border-bottom:1px solid #eee;padding:3px 0;font-size:14px;overflow-wrap:anywhere}
 .kn .v{font-weight:600;font-variant-numeric:tabular-nums}
 .plots{display:flex;flex-wrap:wrap;gap:8px}
 svg.plot{background:#fff}

@@ -68,6 +68,13 @@ std::vector<double> to_insert_faces(const models::BuiltModel& built,
 Scene3D SceneRecorder::make_scene(const models::BuiltModel& built) const {
   Scene3D s;
   s.insert = insert_scene_mesh(built);
+  if (pcts_.empty()) {
+    // the CVODE reference integrator calls no observer: no instants were recorded
+    s.step_values = {0.0};
+    s.note = "The insert's geometry only: this integrator reports no per-step contact state "
+             "(the pressure maps at output.map_pcts are in pressure_<pct>pct.vtp).";
+    return s;
+  }
   s.femur = femur_scene_mesh(built);
   s.step_values = pcts_;
   for (const auto& X : X_TF_) {

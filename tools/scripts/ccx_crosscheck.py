@@ -463,9 +463,17 @@ def write_tables(args, rows, details):
         wr.writeheader()
         for r in rows:
             wr.writerow(r)
+    def strict(v):  # JSON has no NaN (strict readers such as nlohmann refuse it): null
+        if isinstance(v, float) and not math.isfinite(v):
+            return None
+        if isinstance(v, dict):
+            return {k: strict(x) for k, x in v.items()}
+        if isinstance(v, list):
+            return [strict(x) for x in v]
+        return v
     with open(os.path.join(args.out, "crosscheck.json"), "w") as f:
-        json.dump({"rows": rows, "runs": details, "penalty_factor": args.penalty_factor},
-                  f, indent=1)
+        json.dump(strict({"rows": rows, "runs": details, "penalty_factor": args.penalty_factor}),
+                  f, indent=1, allow_nan=False)
     lines = ["| material | gait % | CalculiX BC | peak pressure MPa kneesim / ccx | mean pressure "
              "MPa | contact area mm² | axial force N | medial share | von Mises surface MPa | "
              "von Mises subsurface MPa |", "|" + "---|" * 10]

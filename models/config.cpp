@@ -5,6 +5,7 @@
 #include "models/config.h"
 #include "models/contact_law_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -212,6 +213,8 @@ void register_material(Registry& r, const std::string& prefix, MaterialConfig& m
     "Coulomb friction coefficient against the CoCr femoral component");
   r.number(prefix + "wear_factor_mm3_per_Nmm", m.wear_factor_mm3_per_Nmm, 0.0, 1e-3,
     "wear factor k of the wear law (Archard: dh = k p ds sqrt(1 + 3 mu^2))");
+  r.number(prefix + "area_wear_coefficient", m.area_wear_coefficient, 0.0, 1e-3,
+    "coefficient C of the contact-area wear law dh = C f(CS) ds (0: none known)");
   r.text(prefix + "source", m.source,
     "where the material's values come from (reported in outputs)");
   r.text(prefix + "wear_factor_source", m.wear_factor_source,
@@ -274,6 +277,30 @@ Registry make_registry(Config& c) {
   r.text("material.name", c.material.name,
     "insert material: a library name (models/materials.toml) or a [materials.<name>] table");
   register_material(r, "material.", c.material);
+
+  r.choice("wear.law", c.wear.law,
+    {"archard", "pressure_dependent_wear", "material_pressure", "cross_shear", "contact_area",
+     "running_in", "incubation"},
+    "wear law of every wear prediction (theory: wear laws); its coefficient is the material's "
+    "(material_pressure: pressure_dependent_wear with the material's own exponent and p_ref)");
+  r.number("wear.cross_shear_gain", c.wear.cross_shear_gain, 0.0, 1000.0,
+    "cross_shear, contact_area: g in the cross-shear factor f(CS) = 1 + g CS");
+  r.number("wear.pressure_exponent", c.wear.pressure_exponent, -3.0, 4.0,
+    "pressure_dependent_wear, cross_shear: alpha in the pressure factor (p / p_ref)^-alpha");
+  r.number("wear.reference_pressure_MPa", c.wear.reference_pressure_MPa, 0.01, 1000.0,
+    "pressure_dependent_wear, cross_shear: p_ref of the pressure factor");
+  r.number("wear.running_in_excess", c.wear.running_in_excess, 0.0, 1e4,
+    "running_in: initial extra wear-rate ratio a in 1 + a exp(-N / N_r)");
+  r.number("wear.running_in_cycles", c.wear.running_in_cycles, 1.0, 1e9,
+    "running_in: decay constant N_r");
+  r.number("wear.incubation_cycles", c.wear.incubation_cycles, 1.0, 1e9,
+    "incubation: time constant N_i in 1 - exp(-N / N_i)");
+  r.flag("wear.creep", c.wear.creep,
+    "add creep penetration phi d_el (1 - exp(-t / tau)) to the reported depth (no volume loss)");
+  r.number("wear.creep_ratio", c.wear.creep_ratio, 0.0, 100.0,
+    "creep: saturated creep over the cycle-mean elastic penetration, phi");
+  r.number("wear.creep_time_s", c.wear.creep_time_s, 1e-3, 1e12,
+    "creep: time constant tau of the creep penetration (loaded test time)");
 
   r.choice("contact.law", c.contact_law, {"linear", "nonlinear"},
     "rigid insert's elastic-foundation law: p = -K ln(1 - d/h) (nonlinear) or p = K d/h (linear)");
@@ -376,6 +403,10 @@ Registry make_registry(Config& c) {
     "factor on the AP force waveform");
   r.number("gait.ie_torque_scale", c.ie_torque_scale, 0, 10,
     "factor on the IE torque waveform");
+  r.number("gait.ap_displacement_scale", c.ap_displacement_scale, 0, 10,
+    "factor on the prescribed AP displacement waveform (displacement control)");
+  r.number("gait.ie_rotation_scale", c.ie_rotation_scale, 0, 10,
+    "factor on the prescribed IE rotation waveform (displacement control)");
   r.number("gait.vv_torque_axial_arm_mm", c.vv_torque_axial_arm_mm, -50, 50,
     "tibial VV torque = arm x axial force (the load line moved medially), + varus");
   r.number("gait.vv_torque_stance_arm_mm", c.vv_torque_stance_arm_mm, -50, 50,
@@ -522,9 +553,9 @@ std::map<std::string, MaterialConfig> take_material_tables(std::map<std::string,
     if (!f) {
       throw InputError(it->second.origin + ": unknown key '" + it->first + "' (allowed: "
                        "elastic_modulus_MPa, poisson, yield_MPa, density_g_per_cm3, friction, "
-                       "wear_factor_mm3_per_Nmm, wear_factor_source, wear_factor_independent, "
-                       "wear_pressure_exponent, wear_reference_pressure_MPa, "
-                       "wear_pressure_source, source)");
+                       "wear_factor_mm3_per_Nmm, area_wear_coefficient, wear_factor_source, "
+                       "wear_factor_independent, wear_pressure_exponent, "
+                       "wear_reference_pressure_MPa, wear_pressure_source, source)");
     }
     f->assign(it->second.value, it->second.origin + " [" + it->first + "]");
     if (key == "wear_factor_mm3_per_Nmm") factor_origin[name] = it->second.origin;
@@ -577,7 +608,45 @@ std::map<std::string, std::vector<std::string>> take_conditions(std::map<std::st
   return out;
 }
 
+// a wear parameter given for a law that does not use it is refused: it would silently do nothing
+void check_wear_keys(const Config& c, const std::map<std::string, Entry>& flat) {
+  const std::vector<std::string> own = wear_law_parameter_keys(c.wear.law);
+  for (auto it = flat.lower_bound("wear."); it != flat.end() && it->first.starts_with("wear.");
+       ++it) {
+    const std::string name = it->first.substr(5);
+    if (name == "law" || name == "creep") continue;
+    if (name == "creep_ratio" || name == "creep_time_s") {
+      if (!c.wear.creep) {
+        throw InputError(it->second.origin + ": key '" + it->first + "' is a creep parameter "
+                         "but wear.creep = false (set wear.creep = true to add creep)");
+      }
+      continue;
+    }
+    if (std::find(own.begin(), own.end(), name) == own.end()) {
+      std::string list;
+      for (const auto& k : own) list += (list.empty() ? "" : ", ") + ("wear." + k);
+      throw InputError(it->second.origin + ": key '" + it->first + "' is not a parameter of "
+                       "wear.law = \"" + c.wear.law + "\" (its parameters: " +
+                       (list.empty() ? std::string("none") : list) + ")" +
+                       (c.wear.law == "material_pressure"
+                            ? "; its exponent and p_ref are the material's "
+                              "wear_pressure_exponent and wear_reference_pressure_MPa"
+                            : ""));
+    }
+  }
+}
+
 }  // namespace
+
+std::vector<std::string> wear_law_parameter_keys(const std::string& law) {
+  if (law == "pressure_dependent_wear") return {"pressure_exponent", "reference_pressure_MPa"};
+  if (law == "cross_shear")
+    return {"cross_shear_gain", "pressure_exponent", "reference_pressure_MPa"};
+  if (law == "contact_area") return {"cross_shear_gain"};
+  if (law == "running_in") return {"running_in_excess", "running_in_cycles"};
+  if (law == "incubation") return {"incubation_cycles"};
+  return {};
+}
 
 std::vector<std::string> library_material_names() {
   std::vector<std::string> names;
@@ -694,6 +763,7 @@ Config load_config(const std::filesystem::path& file, const std::vector<Override
     }
     f->assign(entry.value, entry.origin);
   }
+  check_wear_keys(c, flat);
   if (c.gait_file.empty()) {
     c.gait_file = c.rig_preset == "displacement"
                       ? "${KNEESIM_SOURCE}/loads/iso14243/iso14243_3_approx.csv"

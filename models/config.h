@@ -24,6 +24,8 @@ struct MaterialConfig {
   double density_g_per_cm3 = 0.935;          // [g/cm^3]
   double friction = 0.07;                    // Coulomb coefficient against CoCr [-]
   double wear_factor_mm3_per_Nmm = 2.643e-10;  // Archard k [mm^3/(N mm)]
+  // C of the contact-area law dh = C f(CS) ds (Abdelgaied 2011); 0: none known [-]
+  double area_wear_coefficient = 0.0;
   std::string source;                        // where the values come from
   // where the wear factor comes from, and whether it is independent of the comparisons the
   // project makes (false: calibrated on, or derived from, what kneesim is judged against, so
@@ -38,6 +40,27 @@ struct MaterialConfig {
   double wear_reference_pressure_MPa = 10.0;  // p_ref [MPa]
   std::string wear_pressure_source;           // the direction's citation and the magnitude's
 };
+
+// [wear]: the wear law every wear prediction uses (run's wear-rate maps, wear, compare, study
+// wear trials, the diagnosis forward models); wear/wear_law.h turns it into wear::WearLawParams.
+// The coefficient (k, or C of the area law) is the material's; these are the law's shape.
+struct WearConfig {
+  std::string law = "archard";          // archard | pressure_dependent_wear | cross_shear |
+                                        // contact_area | running_in | incubation
+  double cross_shear_gain = 0.0;        // g in f(CS) = 1 + g CS [-]
+  double pressure_exponent = 0.0;       // alpha in (p / p_ref)^-alpha [-]
+  double reference_pressure_MPa = 10.0; // p_ref [MPa]
+  double running_in_excess = 0.0;       // a, initial extra wear-rate ratio [-]
+  double running_in_cycles = 2e5;       // N_r [cycles]
+  double incubation_cycles = 2e5;       // N_i [cycles]
+  bool creep = false;                   // add creep penetration (separate from wear)
+  double creep_ratio = 0.5;             // phi, saturated creep over elastic penetration [-]
+  double creep_time_s = 3600.0;         // tau, creep time constant [s]
+};
+
+// the [wear] parameter keys (without "wear.") the law `law` uses; creep_ratio and creep_time_s
+// belong to wear.creep = true (any law)
+std::vector<std::string> wear_law_parameter_keys(const std::string& law);
 
 struct Config {
   std::filesystem::path file;  // the config file ("" for built-in defaults)
@@ -63,6 +86,9 @@ struct Config {
   // [material]
   MaterialConfig material;
   std::map<std::string, MaterialConfig> user_materials;  // [materials.<name>]
+
+  // [wear]
+  WearConfig wear;
 
   // [contact]
   std::string contact_law = "nonlinear";   // "linear" | "nonlinear"
@@ -117,6 +143,8 @@ struct Config {
   double period_s = 1.0;
   double ap_sign = 1.0, ie_sign = 1.0;     // sign conventions of the file's AP and IE channels
   double axial_force_scale = 1.0, ap_force_scale = 1.0, ie_torque_scale = 1.0;
+  // factors on the prescribed AP displacement and IE rotation waveforms (displacement control)
+  double ap_displacement_scale = 1.0, ie_rotation_scale = 1.0;
   // varus-valgus torque on the tibial carriage (+ varus, loads the medial condyle), added to a
   // free tibial VV DOF (which becomes force-driven): (arm + stance arm x a stance-phase shape)
   // x axial force: the axial load line moved medially, constantly or following the stance

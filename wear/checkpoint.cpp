@@ -13,9 +13,10 @@
 namespace kneesim::wear {
 namespace {
 
-// v5: records of 22 fields (v4: 18, without the wear potential, sliding distance, cross-shear
-// and stance pressure; v3: 16, without the energy ratios) and the deformable insert's state
-constexpr char kMagic[16] = "kneesim-wear-v5";
+// v6: records of 24 fields (v5: 22, without the creep depths; v4: 18, without the wear
+// potential, sliding distance, cross-shear and stance pressure; v3: 16, without the energy
+// ratios) and the deformable insert's state
+constexpr char kMagic[16] = "kneesim-wear-v6";
 
 class Writer {
  public:

@@ -8,23 +8,28 @@
 namespace kneesim::wear {
 
 WearAccumulator::WearAccumulator(int n, WearLawParams params)
-    : params_(params), depth_(n, 0.0), wxx_(n, 0.0), wxz_(n, 0.0), wzz_(n, 0.0), area_(n, 0.0),
-      site_work_(n, 0.0) {}
+    : params_(params), depth_(n, 0.0), penetration_time_(params.creep ? n : 0, 0.0),
+      wxx_(n, 0.0), wxz_(n, 0.0), wzz_(n, 0.0), area_(n, 0.0), site_work_(n, 0.0) {}
 
 void WearAccumulator::observe(const engine::Model& model, const engine::State&,
                               const engine::Data& data) {
   const double dt = model.dt;
+  observed_time_ += dt;
   step_load_ = step_load_slip_ = 0.0;
   for (int e : data.in_contact) {
     add(e, data.pressure[e], data.slip_speed[e] * dt, data.slip_velocity_T[e],
         model.insert.area[e]);
   }
   if (step_load_ > 0.0) sliding_ += step_load_slip_ / step_load_;
+  if (params_.creep) {
+    for (int e : data.in_contact) penetration_time_[e] += data.penetration[e] * dt;
+  }
 }
 
 void WearAccumulator::observe_nodes(const engine::Model& model, const engine::State&,
                                     const engine::Data& data) {
   const double dt = model.dt;
+  observed_time_ += dt;
   const engine::solid::SurfaceContactData& c = data.insert_contact;
   step_load_ = step_load_slip_ = 0.0;
   for (int i = 0; i < model.insert_contact.size(); ++i) {
@@ -46,11 +51,21 @@ void WearAccumulator::add(int e, double p, double ds, const Eigen::Vector3d& v, 
   step_load_slip_ += p * area * ds;
   area_[e] = area;
   site_work_[e] += p * area * ds;
-  // the pressure-dependent law weights each step by (p / p_ref)^-alpha
-  const double weight =
-      params_.law == WearLaw::kPressureDependent ? std::pow(p / params_.p_ref, -params_.alpha)
-                                                 : 1.0;
-  depth_[e] += weight * p * ds;
+  switch (params_.law) {
+    case WearLaw::kContactArea:  // wear per unit sliding distance in contact, whatever the load
+      depth_[e] += ds;
+      break;
+    case WearLaw::kPressureDependent:
+    case WearLaw::kCrossShear:  // each step weighted by (p / p_ref)^-alpha
+      depth_[e] += (params_.alpha == 0.0 ? 1.0 : std::pow(p / params_.p_ref, -params_.alpha)) *
+                   p * ds;
+      break;
+    case WearLaw::kArchard:
+    case WearLaw::kRunningIn:
+    case WearLaw::kIncubation:
+      depth_[e] += p * ds;
+      break;
+  }
   const double vx = v.x(), vz = v.z(), v2 = vx * vx + vz * vz;
   if (v2 > 0.0) {
     const double w = p * ds / v2;
@@ -83,21 +98,34 @@ std::vector<double> WearAccumulator::law_gain() const {
     case WearLaw::kIncubation:
     case WearLaw::kPressureDependent:
       break;
-    case WearLaw::kCrossShear: {
+    case WearLaw::kCrossShear:
+    case WearLaw::kContactArea: {  // f(CS) needs the whole cycle's sliding path
       const std::vector<double> cs = cross_shear_ratio();
-      for (size_t e = 0; e < gain.size(); ++e) gain[e] = 1.0 + params_.beta * cs[e];
+      for (size_t e = 0; e < gain.size(); ++e) gain[e] = cross_shear_factor(cs[e], params_.beta);
       break;
     }
   }
   return gain;
 }
 
+double WearAccumulator::coefficient() const { return law_coefficient(params_); }
+
+std::vector<double> WearAccumulator::potential_per_cycle() const {
+  // the Sarkar factor belongs to the k laws (frictional shear in the yield of a loaded
+  // asperity); the area law has no load
+  const double sarkar =
+      params_.law == WearLaw::kContactArea ? 1.0 : sarkar_factor(params_.friction);
+  std::vector<double> out = law_gain();
+  for (size_t e = 0; e < depth_.size(); ++e) out[e] *= sarkar * depth_[e];
+  return out;
+}
+
 double WearAccumulator::wear_potential() const {
-  // depth_per_cycle() / k per site, times the site's area: the same weights, without k
-  const double sarkar = sarkar_factor(params_.friction);
-  const std::vector<double> gain = law_gain();
+  // potential_per_cycle() per site times the site's area: depth_per_cycle() without the
+  // coefficient
+  const std::vector<double> pot = potential_per_cycle();
   double w = 0.0;
-  for (size_t e = 0; e < depth_.size(); ++e) w += area_[e] * gain[e] * sarkar * depth_[e];
+  for (size_t e = 0; e < depth_.size(); ++e) w += area_[e] * pot[e];
   return w;
 }
 
@@ -112,44 +140,17 @@ double WearAccumulator::mean_cross_shear() const {
 }
 
 std::vector<double> WearAccumulator::depth_per_cycle() const {
-  const double sarkar = sarkar_factor(params_.friction);
-  std::vector<double> out(depth_.size(), 0.0);
-  std::vector<double> cs;
-  if (params_.law == WearLaw::kCrossShear) cs = cross_shear_ratio();
-  for (size_t e = 0; e < depth_.size(); ++e) {
-    double k = params_.wear_factor;
-    switch (params_.law) {
-      case WearLaw::kArchard:
-      case WearLaw::kRunningIn:  // weighted by the cycles' running-in factor in the loop
-      case WearLaw::kIncubation:  // likewise, by the incubation factor
-      case WearLaw::kPressureDependent:  // weighted per step in observe()
-        break;
-      case WearLaw::kCrossShear:  // needs the whole cycle's sliding path
-        k *= 1.0 + params_.beta * cs[e];
-        break;
-    }
-    out[e] = k * sarkar * depth_[e];
-  }
+  std::vector<double> out = potential_per_cycle();
+  const double c = coefficient();
+  for (double& d : out) d *= c;
   return out;
 }
 
-double effective_cycles(const WearLawParams& law, double n0, double n) {
-  switch (law.law) {
-    case WearLaw::kRunningIn: {
-      if (law.running_in_cycles <= 0.0) return n;
-      const double nr = law.running_in_cycles;
-      return n + law.running_in_excess * nr * (std::exp(-n0 / nr) - std::exp(-(n0 + n) / nr));
-    }
-    case WearLaw::kIncubation: {
-      if (law.incubation_cycles <= 0.0) return n;
-      const double ni = law.incubation_cycles;
-      return n - ni * (std::exp(-n0 / ni) - std::exp(-(n0 + n) / ni));
-    }
-    case WearLaw::kArchard:
-    case WearLaw::kPressureDependent:
-    case WearLaw::kCrossShear: break;
-  }
-  return n;
+std::vector<double> WearAccumulator::mean_penetration() const {
+  std::vector<double> out(depth_.size(), 0.0);
+  if (!params_.creep || !(observed_time_ > 0.0)) return out;
+  for (size_t e = 0; e < out.size(); ++e) out[e] = penetration_time_[e] / observed_time_;
+  return out;
 }
 
 }  // namespace kneesim::wear

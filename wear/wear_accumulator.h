@@ -1,4 +1,4 @@
-// Accumulates Archard wear depth per contact site over the time steps of a simulated cycle: an
+// Accumulates the wear law's (wear/wear_law.h) depth per contact site over the time steps of a simulated cycle: an
 // observer of engine::simulate (it reads Data, never writes the Model). The sites are the
 // rigid insert's articular elements (observe: depth per element, later spread to vertices
 // with area weights by wear/geometry_update.h, which keeps the volume sum_e depth_e A_e) or
@@ -11,34 +11,9 @@
 #include "engine/data.h"
 #include "engine/model.h"
 #include "engine/state.h"
+#include "wear/wear_law.h"
 
 namespace kneesim::wear {
-
-enum class WearLaw {
-  kArchard,          // constant k (the baseline)
-  kPressureDependent,  // k = k_ref (p / p_ref)^-alpha (Mazzucco & Spector 2003)
-  kCrossShear,       // k = k_ref * (1 + beta * CS) with the element's cross-shear ratio CS
-  kRunningIn,        // dV/dN = k F S (1 + a exp(-N / N_r)): extra early wear (Hussin 2024)
-  kIncubation,       // dV/dN = k F S (1 - exp(-N / N_i)): the rate rises to steady state
-};
-
-struct WearLawParams {
-  WearLaw law = WearLaw::kArchard;
-  double wear_factor = 0.0;   // k or k_ref [m^2/N]
-  double friction = 0.07;     // mu in the Sarkar factor [-]
-  double p_ref = 10e6;        // reference pressure of the pressure-dependent law [Pa]
-  double alpha = 0.0;         // exponent of the pressure-dependent law [-]
-  double beta = 0.0;          // cross-shear gain [-]
-  double running_in_excess = 0.0;    // a, initial extra wear-rate ratio [-]
-  double running_in_cycles = 2e5;    // N_r, running-in decay constant [cycles]
-  double incubation_cycles = 2e5;    // N_i, incubation time constant [cycles]
-};
-
-// the cycles [n0, n0 + n] weighted by the law's wear-rate factor: n, for running-in
-// n + a N_r (exp(-n0 / N_r) - exp(-(n0 + n) / N_r)), for incubation
-// n - N_i (exp(-n0 / N_i) - exp(-(n0 + n) / N_i)) [cycles]; the wear loop scales the depth of
-// one simulated cycle by it
-double effective_cycles(const WearLawParams& law, double n0, double n);
 
 class WearAccumulator {
  public:
@@ -48,8 +23,16 @@ class WearAccumulator {
   // the same for the deformable insert's top nodes (sites in model.insert_contact order)
   void observe_nodes(const engine::Model& model, const engine::State& state,
                      const engine::Data& data);
-  // depth per element accumulated over the observed cycle [m], n_elements
+  // depth per site accumulated over the observed cycle [m], n_sites
   std::vector<double> depth_per_cycle() const;
+  // the wear potential per site over the cycle: depth_per_cycle() over the law's coefficient
+  // (k [m^2/N] for the k laws: [N/m]; C [-] for contact_area: [m])
+  std::vector<double> potential_per_cycle() const;
+  // the law's coefficient: k [m^2/N], or C [-] for contact_area
+  double coefficient() const;
+  // the site's elastic penetration averaged over the observed time (creep's d_el) [m]; zeros
+  // unless the law has creep
+  std::vector<double> mean_penetration() const;
   // cross-shear ratio per element over the cycle [-] (0 for unidirectional sliding)
   std::vector<double> cross_shear_ratio() const;
   double sliding_work() const { return work_; }  // sum of p A ds over the cycle [J]
@@ -72,7 +55,11 @@ class WearAccumulator {
   std::vector<double> law_gain() const;
 
   WearLawParams params_;
-  std::vector<double> depth_;      // Archard-weighted p ds, per site [Pa m]
+  // the law's per-step weight: (p / p_ref)^-alpha p ds for the k laws [Pa m], ds for
+  // contact_area [m], per site
+  std::vector<double> depth_;
+  std::vector<double> penetration_time_;  // sum of penetration dt, per site (creep) [m s]
+  double observed_time_ = 0.0;            // [s]
   // frictional-work tensor per site (x-z plane of T): sum of w v v^T / |v|^2 with
   // w = p ds, from which the principal direction and cross-shear follow (Kang 2008)
   std::vector<double> wxx_, wxz_, wzz_;

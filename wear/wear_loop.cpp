@@ -72,7 +72,7 @@ std::string check_update_record(const UpdateRecord& r, bool closed_insert) {
                            r.plastic_strain_surface, r.plastic_strain_subsurface,
                            r.kinetic_to_internal_max, r.kinetic_to_internal_cycle,
                            r.wear_potential, r.sliding_distance, r.cross_shear,
-                           r.stance_mean_pressure};
+                           r.stance_mean_pressure, r.max_creep_depth, r.max_penetration};
   const char* names[] = {"volume",       "volume_depth",  "max_depth",
                          "medial_volume", "lateral_volume", "contact_area",
                          "peak_pressure", "mean_peak_pressure", "ap_rom", "ie_rom",
@@ -80,7 +80,7 @@ std::string check_update_record(const UpdateRecord& r, bool closed_insert) {
                          "plastic_strain_surface", "plastic_strain_subsurface",
                          "kinetic_to_internal_max", "kinetic_to_internal_cycle",
                          "wear_potential", "sliding_distance", "cross_shear",
-                         "stance_mean_pressure"};
+                         "stance_mean_pressure", "max_creep_depth", "max_penetration"};
   const long cycles = static_cast<long>(r.cycles);
   for (size_t i = 0; i < std::size(fields); ++i) {
     if (!std::isfinite(fields[i])) {
@@ -184,6 +184,22 @@ void fill_solid_figures(const engine::Model& model, const engine::State& state,
   r.kinetic_to_internal_cycle = energy.cycle;
 }
 
+// creep penetration per site after the record's cycles, from the cycle-mean elastic
+// penetration of the cycle simulated on the record's geometry (`acc`), and the record's maxima
+void fill_creep_figures(const engine::Model& model, const WearAccumulator& acc,
+                        const WearLawParams& law, const std::vector<double>& depth,
+                        UpdateRecord& r, std::vector<double>& creep) {
+  const std::vector<double> elastic = calc_site_mean_penetration(model, acc);
+  creep.assign(depth.size(), 0.0);
+  r.max_creep_depth = 0.0;
+  r.max_penetration = 0.0;
+  for (size_t v = 0; v < depth.size(); ++v) {
+    creep[v] = creep_depth(law, elastic[v], r.cycles * model.period);
+    r.max_creep_depth = std::max(r.max_creep_depth, creep[v]);
+    r.max_penetration = std::max(r.max_penetration, depth[v] + creep[v]);
+  }
+}
+
 // the last record gets the figures of a cycle simulated on its geometry (with the wear
 // accumulated over it) and is complete
 void complete_record(const engine::RunResult& run, const engine::Model& model,
@@ -194,6 +210,7 @@ void complete_record(const engine::RunResult& run, const engine::Model& model,
   result.records.back().wear_potential = acc.wear_potential();
   result.records.back().sliding_distance = acc.sliding_distance();
   result.records.back().cross_shear = acc.mean_cross_shear();
+  fill_creep_figures(model, acc, o.law, depth, result.records.back(), result.vertex_creep);
   if (!model.insert_solid.empty()) {
     fill_solid_figures(model, state, cycle, result.records.back());
   }
@@ -224,6 +241,11 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
   WornInsert insert = make_pristine_insert(pristine);
   const double volume0 = calc_insert_volume(pristine, insert);
   // the deformable insert's hex mesh is closed by construction
+  if (o.law.creep && insert.kind == InsertKind::kDeformable) {
+    throw InputError("wear.creep = true is not allowed with insert = \"deformable\" (the "
+                     "solid insert deforms by its own material model); allowed: wear.creep = "
+                     "false, or insert = \"rigid\"");
+  }
   const bool closed_insert =
       insert.kind == InsertKind::kDeformable || pristine.implant.insert_volume > 0.0;
   std::vector<double> depth(sites0.size(), 0.0);
@@ -357,6 +379,8 @@ WearResult run_wear(const models::BuiltModel& pristine, const WearOptions& o) {
   // the last geometry's kinematics and contact: one more cycle on it, its wear accumulated for
   // the record's factor-free figures only
   if (result.status == engine::StepStatus::kOk) {
+    // its accumulator gives the final geometry's elastic penetration (creep); its wear is not
+    // applied
     WearAccumulator acc = make_accumulator(model, o.law);
     const engine::RunResult run =
         simulate_cycle(model, state, pristine.dt_safety, o.law, &acc, cycle);

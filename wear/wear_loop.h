@@ -58,7 +58,11 @@ struct UpdateRecord {
   double sliding_distance = 0;     // [m]
   double cross_shear = 0;          // [-]
   double stance_mean_pressure = 0; // mean over the frames of 0-60 % in contact of force/area [Pa]
-  static constexpr int kFields = 22;
+  // creep (wear.creep): the largest creep penetration and the largest penetration of wear
+  // and creep together, as a CMM or radiograph measures it (0 without creep: wear alone) [m]
+  double max_creep_depth = 0;
+  double max_penetration = 0;
+  static constexpr int kFields = 24;
 };
 
 // the enclosed-volume loss and the depth integral of a closed insert differ by this fraction
@@ -97,6 +101,7 @@ struct WearResult {
   std::vector<UpdateRecord> records;    // cycle 0 first
   std::vector<double> vertex_depth;     // cumulative, per wear site [m]: articular vertex
                                         // (rigid) or top node (deformable, insert_contact order)
+  std::vector<double> vertex_creep;     // creep penetration per wear site at the end [m]
   models::TriMesh worn;                 // the rigid insert after the last update (empty for
                                         // the deformable insert: worn_insert has its nodes)
   WornInsert worn_insert;               // the worn geometry (wear/worn_insert.h)

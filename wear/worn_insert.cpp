@@ -63,6 +63,12 @@ std::vector<double> calc_site_depth(const engine::Model& model, const WearAccumu
   return acc.depth_per_cycle();
 }
 
+std::vector<double> calc_site_mean_penetration(const engine::Model& model,
+                                               const WearAccumulator& acc) {
+  if (model.insert_solid.empty()) return spread_to_vertices(model.insert, acc.mean_penetration());
+  return acc.mean_penetration();
+}
+
 std::vector<Eigen::Vector3d> calc_site_normals(const engine::Model& model) {
   if (model.insert_solid.empty()) return articular_vertex_normals(model.insert);
   return models::calc_top_node_normals(model, model.insert_solid.reference_positions);

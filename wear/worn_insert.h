@@ -52,6 +52,9 @@ void observe_wear(WearAccumulator& acc, const engine::Model& model, const engine
 
 // depth per wear site of one cycle [m] from the accumulator of that cycle on `model`
 std::vector<double> calc_site_depth(const engine::Model& model, const WearAccumulator& acc);
+// the sites' cycle-mean elastic penetration of the accumulator's cycle (creep's d_el) [m]
+std::vector<double> calc_site_mean_penetration(const engine::Model& model,
+                                               const WearAccumulator& acc);
 
 // unit outward normals of the wear sites on the model's current geometry
 std::vector<Eigen::Vector3d> calc_site_normals(const engine::Model& model);

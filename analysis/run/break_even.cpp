@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "wear/wear_law.h"
+
 namespace kneesim::run {
 
 double target_value(const RatioRun& run, BreakEvenTarget target) {
@@ -29,7 +31,7 @@ void RatioRuns::add(const RatioRun& run) { runs_[run.ratio] = run; }
 const RatioRun& RatioRuns::at(double ratio) {
   if (auto it = runs_.find(ratio); it != runs_.end()) return it->second;
   wear::WearOptions o = options_;
-  o.law.wear_factor = ratio * reference_factor_;
+  wear::set_law_coefficient(o.law, ratio * reference_factor_);
   const wear::WearResult r = wear::run_wear(built_, o);
   ++made_;
   RatioRun run;

@@ -46,8 +46,8 @@ struct BreakEven {
 // share them); not thread-safe: one per material and thread
 class RatioRuns {
  public:
-  // `options` is the material's wear run (law, friction, schedule); its wear factor is replaced
-  // by ratio x reference_factor [m^2/N]
+  // `options` is the material's wear run (law, friction, schedule); its law's coefficient (k
+  // [m^2/N], or C of the contact-area law) is replaced by ratio x reference_factor
   RatioRuns(const models::BuiltModel& built, wear::WearOptions options, double reference_factor);
   const RatioRun& at(double ratio);
   // adds a run made elsewhere (e.g. the comparison's own run at the material's factor)

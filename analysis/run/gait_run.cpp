@@ -16,6 +16,8 @@
 #include "engine/io/progress.h"
 #include "engine/simulate.h"
 #include "loads/iso14243/kinematics.h"
+#include "wear/wear_law.h"
+#include "wear/worn_insert.h"
 
 namespace kneesim::run {
 namespace {
@@ -29,7 +31,7 @@ void clear_outputs(const std::filesystem::path& dir) {
     if (name == "kinematics.csv" || name == "summary.json" || name == "kinematics.png" ||
         name == "kinematics.partial.csv" || name == "measured_kinematics.csv" ||
         name == "summary.failed.json" || name == "fe_export.json" || name == "report.html" ||
-        name.rfind("pressure_", 0) == 0 ||
+        name.rfind("pressure_", 0) == 0 || name == "wear_rate.vtp" ||
         name.rfind("insert_stress", 0) == 0) {
       fs::remove(e.path());
     }
@@ -123,26 +125,30 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   // the report's 3D view: pressure and femoral pose every 2 % of the last cycle
   std::optional<report::SceneRecorder> scene;
   if (job.report) scene.emplace();
-  std::function<void()> reset_tracker;
-  if (solid || scene) {
-    reset_tracker = [&tracker, &fe_export, &scene, &built, solid] {
-      if (solid) tracker.emplace(built.model);
-      if (fe_export) fe_export->clear();
-      if (scene) scene->clear();
-    };
-    reset_tracker();
-    options.observer = [&tracker, &fe_export, &scene](const engine::Model& m,
-                                                      const engine::State& s,
-                                                      const engine::Data& d) {
-      if (tracker) tracker->observe(d);
-      if (fe_export) fe_export->observe(m, s, d);
-      if (scene) scene->observe(m, s, d);
-    };
-  }
+  // the wear law's depth over the last cycle: the wear-rate map of the cycle (wear.law)
+  const wear::WearLawParams law =
+      wear::make_wear_law(config.wear, built.material, built.model.contact.friction);
+  std::optional<wear::WearAccumulator> wear_acc;
+  const double last_cycle_start = (config.cycles - 1) * built.model.period;
+  const std::function<void()> reset_observers = [&] {
+    if (solid) tracker.emplace(built.model);
+    if (fe_export) fe_export->clear();
+    if (scene) scene->clear();
+    wear_acc.emplace(wear::make_accumulator(built.model, law));
+  };
+  reset_observers();
+  options.observer = [&](const engine::Model& m, const engine::State& s, const engine::Data& d) {
+    if (solid) tracker->observe(d);
+    if (fe_export) fe_export->observe(m, s, d);
+    if (scene) scene->observe(m, s, d);
+    // a step ending after the last cycle's start belongs to it (the first is half a step late:
+    // a step's observation is of its end state)
+    if (s.time > last_cycle_start + 0.5 * m.dt) wear::observe_wear(*wear_acc, m, s, d);
+  };
   const auto t0 = std::chrono::steady_clock::now();
   const double dt_estimated = built.model.dt;
   engine::State state;
-  const engine::RunResult result = simulate_gait(built, options, &state, reset_tracker);
+  const engine::RunResult result = simulate_gait(built, options, &state, reset_observers);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   bar.finish();
 
@@ -219,6 +225,8 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
     }
     io::write_json(out / "fe_export.json", make_fe_export(built, config, *fe_export));
   }
+  summary.update(describe_wear_rate(built.model, *wear_acc, config));
+  if (!solid) write_wear_rate_map(out / "wear_rate.vtp", built.model.insert, *wear_acc);
   GaitRunReport report;
   report.figures = calc_cycle_figures(result.frames);
   report.seconds = seconds;

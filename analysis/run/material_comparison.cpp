@@ -9,10 +9,12 @@
 #include <set>
 #include <thread>
 
+#include "analysis/run/run_outputs.h"
 #include "engine/errors.h"
 #include "engine/io/source_tree.h"
 #include "engine/io/toml_file.h"
 #include "wear/archard.h"
+#include "wear/wear_law.h"
 
 namespace kneesim::run {
 namespace {
@@ -94,7 +96,12 @@ std::vector<MaterialBreakEven> calc_break_evens(const std::vector<WearJob>& jobs
                                                 const std::vector<nlohmann::json>& results,
                                                 size_t reference,
                                                 const BreakEvenSettings& settings) {
-  const double k_ref = jobs[reference].config.material.wear_factor_mm3_per_Nmm;
+  // the law's coefficient (k, or C of the contact-area law) of each material, SI
+  const auto coefficient = [](const WearJob& j) {
+    return wear::law_coefficient(
+        wear::make_wear_law(j.config.wear, j.config.material, j.config.material.friction));
+  };
+  const double k_ref = coefficient(jobs[reference]);
   const double volume_ref = num(results[reference], "volume_mm3");
   const double depth_ref = num(results[reference], "max_depth_mm");
   // every material's model once, shared by its runs (read-only)
@@ -119,7 +126,7 @@ std::vector<MaterialBreakEven> calc_break_evens(const std::vector<WearJob>& jobs
     built[i] = std::make_unique<models::BuiltModel>(models::build_model(jobs[i].config));
     MaterialBreakEven& m = out[s];
     m.material = jobs[i].config.material.name;
-    m.own_ratio = jobs[i].config.material.wear_factor_mm3_per_Nmm / k_ref;
+    m.own_ratio = coefficient(jobs[i]) / k_ref;
     m.own_independent = jobs[i].config.material.wear_factor_independent;
   }
   std::vector<std::exception_ptr> errors(tasks.size());
@@ -128,8 +135,7 @@ std::vector<MaterialBreakEven> calc_break_evens(const std::vector<WearJob>& jobs
     for (size_t t = next++; t < tasks.size(); t = next++) {
       try {
         const size_t s = tasks[t].slot, i = others[s];
-        RatioRuns runs(*built[i], make_wear_options(jobs[i], *built[i]),
-                       k_ref * wear::kWearFactorSI);
+        RatioRuns runs(*built[i], make_wear_options(jobs[i], *built[i]), k_ref);
         if (tasks[t].grid_ratio > 0.0) {
           runs.at(tasks[t].grid_ratio);
         } else {
@@ -195,6 +201,9 @@ std::string make_comparison_markdown(const std::vector<WearJob>& jobs,
                                      const std::string& reference,
                                      const std::vector<LiteratureBand>& bands) {
   const bool solid = results.front().contains("von_mises_max_surface_MPa");
+  const WearPotentialUnit unit = wear_potential_unit(jobs.front().config.wear.law);
+  const std::string potential = "wear_potential_" + unit.suffix;
+  const std::string potential_run = "wear_potential_run_" + unit.suffix;
   std::string md =
       "## Contact mechanics and kinematics (independent of the wear factor)\n\n"
       "Pristine insert, one settled gait cycle; the wear potential is what the wear law "
@@ -202,7 +211,8 @@ std::string make_comparison_markdown(const std::vector<WearJob>& jobs,
       "insert and summed over the run with its geometry updates.\n\n"
       "| material | peak pressure (MPa) | mean peak pressure (MPa) | stance mean pressure (MPa) "
       "| contact area (mm²) | sliding distance (mm/cycle) | cross-shear ratio | wear potential "
-      "(N mm/cycle) | wear potential over the run (N mm) | AP ROM (mm) | IE ROM (deg) |";
+      "(" + unit.text + "/cycle) | wear potential over the run (" + unit.text + ") | AP ROM (mm) "
+      "| IE ROM (deg) |";
   md += solid ? " von Mises max surface / subsurface (MPa) | plastic strain max surface / "
                 "subsurface |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n"
               : "\n|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -214,8 +224,8 @@ std::string make_comparison_markdown(const std::vector<WearJob>& jobs,
           fmt("%.1f", num(r, "contact_area_mm2")) + " | " +
           fmt("%.1f", num(r, "sliding_distance_mm")) + " | " +
           fmt("%.3f", num(r, "cross_shear_ratio")) + " | " +
-          fmt("%.4g", num(r, "wear_potential_Nmm")) + " | " +
-          fmt("%.4g", num(r, "wear_potential_run_Nmm")) + " | " + fmt("%.2f", num(r, "ap_rom_mm")) +
+          fmt("%.4g", num(r, potential.c_str())) + " | " +
+          fmt("%.4g", num(r, potential_run.c_str())) + " | " + fmt("%.2f", num(r, "ap_rom_mm")) +
           " | " + fmt("%.2f", num(r, "ie_rom_deg")) + " |";
     if (solid) {
       md += " " + fmt("%.1f", num(r, "von_mises_max_surface_MPa")) + " / " +

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "engine/io/vtp.h"
 
@@ -149,6 +150,73 @@ void write_pressure_map(const std::filesystem::path& path, const engine::InsertS
   for (double x : insert.thickness) h.values.push_back(x * 1e3);
   s.cell_data.push_back(std::move(h));
   io::write_vtp(path, s);
+}
+
+WearPotentialUnit wear_potential_unit(const std::string& law) {
+  if (law == "contact_area") return {"mm3", 1e9, "mm³"};
+  return {"Nmm", 1e3, "N mm"};
+}
+
+nlohmann::json describe_wear_law(const models::Config& c) {
+  nlohmann::json j;
+  j["wear_law"] = c.wear.law;
+  nlohmann::json params = nlohmann::json::object();
+  const auto value = [&c](const std::string& key) {
+    const std::optional<models::NumberKey> n = models::find_number_key(c, "wear." + key);
+    return n ? n->value : 0.0;
+  };
+  for (const std::string& key : models::wear_law_parameter_keys(c.wear.law)) {
+    params[key] = value(key);
+  }
+  j["wear_law_params"] = params;
+  j["creep"] = c.wear.creep;
+  if (c.wear.creep) {
+    j["creep_ratio"] = c.wear.creep_ratio;
+    j["creep_time_s"] = c.wear.creep_time_s;
+  }
+  j["area_wear_coefficient"] = c.material.area_wear_coefficient;
+  if (c.wear.law == "material_pressure") {  // the law's parameters are the material's
+    j["wear_pressure_exponent"] = c.material.wear_pressure_exponent;
+    j["wear_reference_pressure_MPa"] = c.material.wear_reference_pressure_MPa;
+    j["wear_pressure_source"] = c.material.wear_pressure_source;
+  }
+  return j;
+}
+
+void write_wear_rate_map(const std::filesystem::path& path, const engine::InsertSurface& insert,
+                         const wear::WearAccumulator& acc) {
+  io::VtpSurface s;
+  for (const auto& v : insert.vertices_T) s.points_mm.push_back(v * 1e3);
+  s.triangles = insert.triangles;
+  io::VtpArray rate{"wear_rate_mm_per_Mc", {}};
+  for (double d : acc.depth_per_cycle()) rate.values.push_back(d * 1e3 * 1e6);
+  s.cell_data.push_back(std::move(rate));
+  io::VtpArray cs{"cross_shear_ratio", {}};
+  for (double c : acc.cross_shear_ratio()) cs.values.push_back(c);
+  s.cell_data.push_back(std::move(cs));
+  io::write_vtp(path, s);
+}
+
+nlohmann::json describe_wear_rate(const engine::Model& model, const wear::WearAccumulator& acc,
+                                  const models::Config& config) {
+  nlohmann::json j = describe_wear_law(config);
+  const std::vector<double> depth = acc.depth_per_cycle();
+  // site areas: the rigid insert's elements or the deformable insert's top nodes
+  const std::vector<double>& area =
+      model.insert_solid.empty() ? model.insert.area : model.insert_contact.area;
+  double volume = 0.0, peak = 0.0;
+  for (size_t e = 0; e < depth.size(); ++e) {
+    volume += depth[e] * area[e];
+    peak = std::max(peak, depth[e]);
+  }
+  j["cycle_wear_rate_mm3_per_Mc"] = volume * 1e9 * 1e6;
+  j["cycle_peak_wear_rate_mm_per_Mc"] = peak * 1e3 * 1e6;
+  // the sliding-work-weighted cross-shear ratio, as wear.csv's cross_shear_ratio
+  j["cycle_cross_shear_ratio"] = acc.mean_cross_shear();
+  // what the law multiplies its coefficient by (volume = coefficient x potential)
+  const WearPotentialUnit unit = wear_potential_unit(config.wear.law);
+  j["cycle_wear_potential_" + unit.suffix] = acc.wear_potential() * unit.per_si;
+  return j;
 }
 
 }  // namespace kneesim::run

@@ -10,6 +10,7 @@
 #include "engine/io/table.h"
 #include "engine/simulate.h"
 #include "models/build_model.h"
+#include "wear/wear_accumulator.h"
 
 namespace kneesim::run {
 
@@ -35,5 +36,30 @@ nlohmann::json describe_figures(const CycleFigures& f);
 // insert surface with per-element pressure [Pa] as a .vtp file (pressure_MPa cell array)
 void write_pressure_map(const std::filesystem::path& path, const engine::InsertSurface& insert,
                         const std::vector<double>& pressure_Pa);
+
+// the I/O unit of the wear potential (what the law multiplies by its coefficient): N mm for the
+// k laws (k [mm^3/(N mm)] x potential = volume [mm^3]), mm^3 for contact_area (C [-] x
+// potential = volume); outputs name it wear_potential_<suffix>
+struct WearPotentialUnit {
+  std::string suffix;  // "Nmm" or "mm3"
+  double per_si;       // I/O value per SI value (J -> N mm: 1e3; m^3 -> mm^3: 1e9)
+  std::string text;    // "N mm" or "mm³", for tables
+};
+WearPotentialUnit wear_potential_unit(const std::string& law);
+
+// the wear law of a config as summary.json reports it: wear_law, wear_law_params (the law's
+// parameters by their [wear] names, I/O units), creep and its parameters
+nlohmann::json describe_wear_law(const models::Config& config);
+
+// the wear-rate map of a simulated cycle: per element the law's depth rate (wear_rate_mm_per_Mc),
+// the cross-shear ratio and the wear potential per cycle, over the rigid insert's surface
+void write_wear_rate_map(const std::filesystem::path& path, const engine::InsertSurface& insert,
+                         const wear::WearAccumulator& acc);
+
+// the cycle's wear figures for summary.json: the law (wear_law, wear_law_params), the volume
+// rate it implies on the unworn insert (cycle_wear_rate_mm3_per_Mc), its peak depth rate and
+// the work-weighted mean cross-shear ratio
+nlohmann::json describe_wear_rate(const engine::Model& model, const wear::WearAccumulator& acc,
+                                  const models::Config& config);
 
 }  // namespace kneesim::run

@@ -27,6 +27,7 @@
 #include "wear/archard.h"
 #include "wear/checkpoint.h"
 #include "wear/geometry_update.h"
+#include "wear/wear_law.h"
 #include "wear/wear_loop.h"
 #include "wear/worn_insert.h"
 
@@ -34,19 +35,18 @@ namespace kneesim::run {
 namespace {
 
 constexpr double kM3ToMm3 = 1e9;
-// the wear potential [J] in the I/O unit N mm: k [mm^3/(N mm)] x potential [N mm] = volume [mm^3]
-constexpr double kJToNmm = 1e3;
 
 // the deformable insert's extra columns: von Mises and plastic strain, surface and subsurface
 io::Table make_wear_table(const std::vector<wear::UpdateRecord>& records, double density,
-                          bool solid) {
+                          bool solid, const WearPotentialUnit& unit) {
   io::Table t;
   t.columns = {"cycles",           "volume_mm3",        "volume_depth_mm3",
                "mass_mg",          "max_depth_mm",      "medial_volume_mm3",
                "lateral_volume_mm3", "contact_area_mm2", "peak_pressure_MPa",
                "mean_peak_pressure_MPa", "ap_rom_mm",   "ie_rom_deg",
-               "refinements", "stance_mean_pressure_MPa", "wear_potential_Nmm",
-               "sliding_distance_mm", "cross_shear_ratio"};
+               "refinements", "stance_mean_pressure_MPa", "wear_potential_" + unit.suffix,
+               "sliding_distance_mm", "cross_shear_ratio", "max_creep_depth_mm",
+               "max_penetration_mm"};
   if (solid) {
     for (const char* c : {"von_mises_max_surface_MPa", "von_mises_max_subsurface_MPa",
                           "plastic_strain_max_surface", "plastic_strain_max_subsurface"}) {
@@ -59,8 +59,9 @@ io::Table make_wear_table(const std::vector<wear::UpdateRecord>& records, double
         r.volume * kM3ToMm3 * density, r.max_depth * 1e3, r.medial_volume * kM3ToMm3,
         r.lateral_volume * kM3ToMm3, r.contact_area * 1e6, r.peak_pressure * 1e-6,
         r.mean_peak_pressure * 1e-6, r.ap_rom * 1e3, r.ie_rom * 180.0 / std::numbers::pi,
-        r.refinements, r.stance_mean_pressure * 1e-6, r.wear_potential * kJToNmm,
-        r.sliding_distance * 1e3, r.cross_shear};
+        r.refinements, r.stance_mean_pressure * 1e-6, r.wear_potential * unit.per_si,
+        r.sliding_distance * 1e3, r.cross_shear, r.max_creep_depth * 1e3,
+        r.max_penetration * 1e3};
     if (solid) {
       row.insert(row.end(), {r.von_mises_surface * 1e-6, r.von_mises_subsurface * 1e-6,
                              r.plastic_strain_surface, r.plastic_strain_subsurface});
@@ -137,66 +138,6 @@ bool clear_wear_outputs(const std::filesystem::path& dir) {
   return any;
 }
 
-// the job's wear law with its parameters; throws InputError naming the option
-static wear::WearLawParams make_wear_law(const WearJob& j) {
-  wear::WearLawParams law;
-  auto bad = [](const std::string& s) { throw InputError("--law-param " + s); };
-  if (j.wear_law == "archard") {
-    law.law = wear::WearLaw::kArchard;
-  } else if (j.wear_law == "pressure_dependent_wear" || j.wear_law == "material_pressure") {
-    // material_pressure: the same kernel with each material's own exponent and p_ref
-    // (make_wear_options), k = k_ref (p / p_ref)^n with alpha = -n
-    law.law = wear::WearLaw::kPressureDependent;
-  } else if (j.wear_law == "cross_shear") {
-    law.law = wear::WearLaw::kCrossShear;
-  } else if (j.wear_law == "running_in") {
-    law.law = wear::WearLaw::kRunningIn;
-  } else if (j.wear_law == "incubation") {
-    law.law = wear::WearLaw::kIncubation;
-  } else {
-    throw InputError("--wear-law = '" + j.wear_law + "' is not allowed; allowed: archard, "
-                     "pressure_dependent_wear, material_pressure, cross_shear, running_in, "
-                     "incubation");
-  }
-  for (const std::string& text : j.law_params) {
-    const size_t eq = text.find('=');
-    const std::string name = text.substr(0, eq);
-    char* end = nullptr;
-    const double v = eq == std::string::npos ? NAN : std::strtod(text.c_str() + eq + 1, &end);
-    if (eq == std::string::npos || end == text.c_str() + eq + 1 || *end != '\0' || !std::isfinite(v)) {
-      bad("'" + text + "' is not name=number");
-    }
-    if (j.wear_law == "material_pressure") {
-      bad("'" + text + "': material_pressure takes its exponent and p_ref from the material "
-          "(material.wear_pressure_exponent, material.wear_reference_pressure_MPa)");
-    }
-    if (law.law == wear::WearLaw::kPressureDependent && name == "alpha") {
-      if (v < -3.0 || v > 4.0) bad("alpha = " + text.substr(eq + 1) + " is outside [-3, 4]");
-      law.alpha = v;
-    } else if (law.law == wear::WearLaw::kPressureDependent && name == "p_ref_MPa") {
-      if (v < 0.01 || v > 1000.0) bad("p_ref_MPa = " + text.substr(eq + 1) + " is outside [0.01, 1000]");
-      law.p_ref = v * 1e6;
-    } else if (law.law == wear::WearLaw::kCrossShear && name == "beta") {
-      if (v < 0.0 || v > 1000.0) bad("beta = " + text.substr(eq + 1) + " is outside [0, 1000]");
-      law.beta = v;
-    } else if (law.law == wear::WearLaw::kRunningIn && name == "running_in_excess") {
-      if (v < 0.0 || v > 1e4) bad("running_in_excess = " + text.substr(eq + 1) + " is outside [0, 1e4]");
-      law.running_in_excess = v;
-    } else if (law.law == wear::WearLaw::kRunningIn && name == "running_in_cycles") {
-      if (v < 1.0 || v > 1e9) bad("running_in_cycles = " + text.substr(eq + 1) + " is outside [1, 1e9]");
-      law.running_in_cycles = v;
-    } else if (law.law == wear::WearLaw::kIncubation && name == "incubation_cycles") {
-      if (v < 1.0 || v > 1e9) bad("incubation_cycles = " + text.substr(eq + 1) + " is outside [1, 1e9]");
-      law.incubation_cycles = v;
-    } else {
-      bad("'" + name + "' is not a parameter of --wear-law " + j.wear_law +
-          " (pressure_dependent_wear: alpha, p_ref_MPa; cross_shear: beta; running_in: "
-          "running_in_excess, running_in_cycles; incubation: incubation_cycles; archard: none)");
-    }
-  }
-  return law;
-}
-
 // geometry updates of the job: the intervals of --update-every or --schedule (its last entry
 // repeated) summed until they reach the cycles, counted up to `limit` + 1
 static long count_updates(const WearJob& j, long limit) {
@@ -237,7 +178,9 @@ static void check_output_size(const WearJob& j, const models::BuiltModel& built)
 
 void check_wear_job(const WearJob& j) {
   constexpr long kMaxUpdates = 10000;
-  make_wear_law(j);
+  const models::MaterialConfig& m = j.config.material;
+  const wear::WearLawParams law =
+      wear::make_wear_law(j.config.wear, m, m.friction);  // refuses a law the material lacks
   if (j.cycles <= 0) {
     throw InputError("--cycles = " + std::to_string(j.cycles) + " is not allowed (a positive "
                      "number of gait cycles)");
@@ -272,7 +215,8 @@ void check_wear_job(const WearJob& j) {
                      std::to_string((j.cycles + kMaxUpdates - 1) / kMaxUpdates) + " or more");
   }
   const double k = j.config.material.wear_factor_mm3_per_Nmm;
-  if (!j.allow_any_wear_factor && (k < 1e-12 || k > 1e-6)) {
+  if (law.law != wear::WearLaw::kContactArea && !j.allow_any_wear_factor &&
+      (k < 1e-12 || k > 1e-6)) {
     throw InputError("material '" + j.config.material.name + "' wear_factor_mm3_per_Nmm = " +
                      std::to_string(k) + " is outside the plausible range 1e-12 to 1e-6 "
                      "mm^3/(N mm); pass --allow-any-wear-factor to use it anyway");
@@ -284,13 +228,7 @@ wear::WearOptions make_wear_options(const WearJob& j, const models::BuiltModel& 
   o.total_cycles = j.cycles;
   o.update_every = j.update_every;
   o.schedule = j.schedule;
-  o.law = make_wear_law(j);
-  o.law.wear_factor = built.material.wear_factor_mm3_per_Nmm * wear::kWearFactorSI;
-  o.law.friction = built.model.contact.friction;
-  if (j.wear_law == "material_pressure") {
-    o.law.alpha = -built.material.wear_pressure_exponent;
-    o.law.p_ref = built.material.wear_reference_pressure_MPa * 1e6;
-  }
+  o.law = wear::make_wear_law(j.config.wear, built.material, built.model.contact.friction);
   return o;
 }
 
@@ -349,7 +287,8 @@ nlohmann::json run_wear_job(const WearJob& j) {
   o.on_update = [&](const std::vector<wear::UpdateRecord>& records,
                     const std::vector<double>& depth) {
     if (want_scene) scene.add(records.back().cycles, depth);
-    io::write_csv(j.out / "wear.csv", make_wear_table(records, density_mg_per_mm3, solid));
+    io::write_csv(j.out / "wear.csv", make_wear_table(records, density_mg_per_mm3, solid,
+                                                        wear_potential_unit(j.config.wear.law)));
     if (j.depth_maps) {
       char name[64];
       std::snprintf(name, sizeof name, "wear_depth_%09.0f.vtp", records.back().cycles);
@@ -370,13 +309,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
   summary["wear_factor_mm3_per_Nmm"] = mat.wear_factor_mm3_per_Nmm;
   summary["wear_factor_source"] = mat.wear_factor_source;
   summary["wear_factor_independent"] = mat.wear_factor_independent;
-  summary["wear_law"] = j.wear_law;
-  summary["wear_law_params"] = j.law_params;
-  if (j.wear_law == "material_pressure") {
-    summary["wear_pressure_exponent"] = mat.wear_pressure_exponent;
-    summary["wear_reference_pressure_MPa"] = mat.wear_reference_pressure_MPa;
-    summary["wear_pressure_source"] = mat.wear_pressure_source;
-  }
+  summary.update(describe_wear_law(j.config));
   summary["density_g_per_cm3"] = mat.density_g_per_cm3;
   summary["sarkar_factor"] = wear::sarkar_factor(built.model.contact.friction);
   if (result.resumed_from_update >= 0) summary["resumed_after_update"] = result.resumed_from_update;
@@ -401,6 +334,9 @@ nlohmann::json run_wear_job(const WearJob& j) {
       last.volume_depth > 0 ? (last.volume - last.volume_depth) / last.volume_depth : 0.0;
   summary["mass_mg"] = last.volume * kM3ToMm3 * density_mg_per_mm3;
   summary["max_depth_mm"] = last.max_depth * 1e3;
+  // penetration as a CMM or radiograph measures it: wear and creep (wear.creep) together
+  summary["max_creep_depth_mm"] = last.max_creep_depth * 1e3;
+  summary["max_penetration_mm"] = last.max_penetration * 1e3;
   summary["medial_volume_mm3"] = last.medial_volume * kM3ToMm3;
   summary["lateral_volume_mm3"] = last.lateral_volume * kM3ToMm3;
   summary["mean_peak_pressure_MPa"] = first.mean_peak_pressure * 1e-6;
@@ -411,8 +347,10 @@ nlohmann::json run_wear_job(const WearJob& j) {
   summary["stance_mean_pressure_MPa"] = first.stance_mean_pressure * 1e-6;
   summary["sliding_distance_mm"] = first.sliding_distance * 1e3;
   summary["cross_shear_ratio"] = first.cross_shear;
-  summary["wear_potential_Nmm"] = first.wear_potential * kJToNmm;
-  summary["wear_potential_run_Nmm"] = wear::calc_run_wear_potential(result.records, o.law) * kJToNmm;
+  const WearPotentialUnit unit = wear_potential_unit(j.config.wear.law);
+  summary["wear_potential_" + unit.suffix] = first.wear_potential * unit.per_si;
+  summary["wear_potential_run_" + unit.suffix] =
+      wear::calc_run_wear_potential(result.records, o.law) * unit.per_si;
   summary["ap_rom_mm"] = first.ap_rom * 1e3;
   summary["ie_rom_deg"] = first.ie_rom * 180.0 / std::numbers::pi;
   summary["final_ap_rom_mm"] = last.ap_rom * 1e3;
@@ -448,10 +386,12 @@ nlohmann::json run_wear_job(const WearJob& j) {
 
   // final depth as points for the top-view contour plot
   io::Table depth;
-  depth.columns = {"x_mm", "z_mm", "depth_mm"};
+  depth.columns = {"x_mm", "z_mm", "depth_mm", "creep_depth_mm"};
   const std::vector<Eigen::Vector3d> sites = wear::find_site_positions(built);
   for (size_t v = 0; v < result.vertex_depth.size(); ++v) {
-    depth.add_row({sites[v].x() * 1e3, sites[v].z() * 1e3, result.vertex_depth[v] * 1e3});
+    const double creep = v < result.vertex_creep.size() ? result.vertex_creep[v] : 0.0;
+    depth.add_row({sites[v].x() * 1e3, sites[v].z() * 1e3, result.vertex_depth[v] * 1e3,
+                   creep * 1e3});
   }
   if (solid) {
     // the worn hex mesh with its element fields of the last cycle (.vtu) and its worn top

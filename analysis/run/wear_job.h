@@ -30,12 +30,6 @@ struct WearJob {
   bool quiet = false;
   bool plots = true;
   bool depth_maps = true;         // a .vtp per update
-  // wear law (the diagnosis effects, wear/wear_accumulator.h): "archard",
-  // "pressure_dependent_wear" (alpha [-], p_ref_MPa [MPa]), "material_pressure" (the same with
-  // the material's own exponent n = -alpha and p_ref, models/materials.toml) or "cross_shear"
-  // (beta [-])
-  std::string wear_law = "archard";
-  std::vector<std::string> law_params;  // "name=value" in I/O units
   // writes out/report.html (analysis/report/wear_report.h) with this provenance when set
   std::optional<report::Provenance> report;
   // receives the report's 3D scene (wear depth per update) when set (compare's report)

@@ -9,6 +9,7 @@
 #include "analysis/run/wear_job.h"
 #include "engine/errors.h"
 #include "engine/simulate.h"
+#include "wear/wear_law.h"
 #include "wear/wear_loop.h"
 
 namespace kneesim::study {
@@ -42,6 +43,8 @@ StudyProblem make_knee_problem(const KneeStudySetup& s) {
     if (s.wear_updates < 1 || s.wear_updates > 1000)
       throw InputError("--wear-updates = " + std::to_string(s.wear_updates) +
                        " is outside the allowed range 1 to 1000");
+    // the wear law of every trial (refuses a law the material has no coefficient for)
+    wear::make_wear_law(base.wear, base.material, base.material.friction);
   }
   p.measures = {"ap_rom_mm", "ie_rom_deg", "peak_pressure_MPa"};
   if (s.wear) {

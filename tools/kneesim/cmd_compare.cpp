@@ -8,7 +8,9 @@
 #include "analysis/run/material_comparison.h"
 #include "analysis/report/provenance.h"
 #include "analysis/report/wear_report.h"
+#include "analysis/run/run_outputs.h"
 #include "analysis/run/wear_job.h"
+#include "wear/wear_law.h"
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/json_out.h"
@@ -36,13 +38,15 @@ struct CompareArgs {
   bool no_break_even = false;
   bool break_even = false;        // also with the deformable insert
   std::string reference = "uhmwpe";
-  std::string wear_law = "archard";
+  std::string wear_law;                 // "" = the config's wear.law
+  std::vector<std::string> law_params;  // name=value
 };
 
 void run(const CompareArgs& a) {
   namespace fs = std::filesystem;
   std::vector<models::Override> base;
   for (const auto& s : a.sets) base.push_back(models::parse_override(s));
+  for (auto& o : wear::wear_law_overrides(a.wear_law, a.law_params)) base.push_back(o);
   // every material is checked before any simulation starts
   std::vector<run::WearJob> jobs;
   // the report: each material's page and its 3D scene for the comparison's page
@@ -60,7 +64,6 @@ void run(const CompareArgs& a) {
     job.depth_maps = false;
     job.plots = !a.no_plots;
     job.resume = a.resume;
-    job.wear_law = a.wear_law;
     if (!a.no_report) {
       if (!provenance) provenance = report::make_provenance(a.config, a.sets, job.config);
       job.report = *provenance;
@@ -70,8 +73,8 @@ void run(const CompareArgs& a) {
     // the schedule (a checkpoint or finished run of anything else is not resumed)
     std::ostringstream id;
     id << "compare v3\n" << (a.config.empty() ? std::string() : io::read_file(a.config)) << "\n";
-    for (const auto& s : a.sets) id << s << "\n";
-    id << m << " " << a.cycles << " " << a.update_every << " " << a.wear_law;
+    for (const auto& s : base) id << s.key << "=" << s.value << "\n";
+    id << m << " " << a.cycles << " " << a.update_every;
     job.identity_text = id.str();
     run::check_wear_job(job);
     jobs.push_back(std::move(job));
@@ -111,6 +114,10 @@ void run(const CompareArgs& a) {
                            "see the break-even ratio)");
       });
 
+  // the wear potential's unit follows the law (every material runs the same law)
+  const run::WearPotentialUnit unit = run::wear_potential_unit(jobs.front().config.wear.law);
+  const std::string potential = "wear_potential_" + unit.suffix;
+  const std::string potential_run = "wear_potential_run_" + unit.suffix;
   io::Table t;
   t.label_name = "material";
   t.columns = {"volume_mm3",      "mass_mg",          "max_depth_mm",
@@ -118,7 +125,7 @@ void run(const CompareArgs& a) {
                "ap_rom_mm",       "ie_rom_deg",        "elastic_modulus_MPa",
                "wear_factor_mm3_per_Nmm", "friction", "dt_s", "seconds", "contact_area_mm2",
                "wear_factor_independent", "stance_mean_pressure_MPa", "sliding_distance_mm",
-               "cross_shear_ratio", "wear_potential_Nmm", "wear_potential_run_Nmm"};
+               "cross_shear_ratio", potential, potential_run};
   // the deformable insert's stress and plastic strain (every material runs the same insert)
   const std::vector<std::string> solid_keys = {
       "von_mises_max_surface_MPa", "von_mises_max_subsurface_MPa", "plastic_strain_max_surface",
@@ -136,7 +143,7 @@ void run(const CompareArgs& a) {
         mat.elastic_modulus_MPa, mat.wear_factor_mm3_per_Nmm, r["friction"], r["dt_s"],
         r["seconds"], r["contact_area_mm2"], mat.wear_factor_independent ? 1.0 : 0.0,
         r["stance_mean_pressure_MPa"], r["sliding_distance_mm"], r["cross_shear_ratio"],
-        r["wear_potential_Nmm"], r["wear_potential_run_Nmm"]};
+        r[potential], r[potential_run]};
     if (solid) {
       for (const std::string& k : solid_keys) row.push_back(r[k].get<double>());
     }
@@ -168,11 +175,12 @@ void run(const CompareArgs& a) {
     settings.workers = a.jobs;
     break_evens = run::calc_break_evens(jobs, results, ref - a.materials.begin(), settings);
   }
+  const std::string& law = jobs.front().config.wear.law;  // every material's
   std::ostringstream head;
   head << "# kneesim compare\n\n" << a.cycles << " cycles, geometry update every "
        << a.update_every << " cycles; same implant, rig and gait for every material; wear law "
-       << a.wear_law << ".\n\n";
-  if (a.wear_law == "material_pressure") {
+       << law << ".\n\n";
+  if (law == "material_pressure") {
     head << "Each material's wear factor depends on the contact pressure, k = k_ref (p / p_ref)^n:\n\n";
     for (const run::WearJob& j : jobs) {
       const models::MaterialConfig& m = j.config.material;
@@ -257,6 +265,7 @@ void add_compare_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--set", args->sets, "override a config key (repeatable)");
+  add_wear_law_options(cmd, args->wear_law, args->law_params);
   cmd->add_option("--jobs", args->jobs, "materials simulated at once (default: all cores)")
       ->check(finite_range(1, 1024));
   cmd->add_flag("--no-plots", args->no_plots,
@@ -270,12 +279,6 @@ void add_compare_command(CLI::App& app) {
                 "skip the break-even wear-factor ratios (each is several whole wear runs)");
   cmd->add_flag("--break-even", args->break_even,
                 "compute the break-even ratios also for the deformable insert (minutes per run)");
-  cmd->add_option("--wear-law", args->wear_law,
-                  "wear law of every material: archard, or material_pressure (k = k_ref "
-                  "(p / p_ref)^n with each material's own n and p_ref, models/materials.toml; the "
-                  "break-even ratio is then that of the factors at p_ref)")
-      ->check(CLI::IsMember({"archard", "material_pressure"}))
-      ->capture_default_str();
   cmd->add_option("--reference", args->reference,
                   "material the break-even wear-factor ratios refer to")
       ->capture_default_str();

@@ -13,6 +13,7 @@
 #include "analysis/report/command_reports.h"
 #include "tools/kneesim/commands.h"
 #include "wear/checkpoint.h"
+#include "wear/wear_law.h"
 
 namespace kneesim::cli {
 namespace {
@@ -26,12 +27,14 @@ struct StudyArgs {
   bool resume = false;
   int threads = 0;
   bool quiet = false;
+  std::string wear_law;                 // "" = the config's wear.law
+  std::vector<std::string> law_params;  // name=value
 };
 
 // FNV-1a of a string through the checkpoint's hash (wear/checkpoint.h)
 uint64_t fnv1a(const std::string& s) { return wear::fnv1a(s.data(), s.size()); }
 
-void run(const StudyArgs& a) {
+void run(StudyArgs a) {
   study::Ranks ranks;  // MPI when launched by mpirun
   study::StudyOptions o;
   if (a.method == "mc") {
@@ -49,6 +52,10 @@ void run(const StudyArgs& a) {
   o.resume = a.resume;
   o.threads = a.threads;
   o.quiet = a.quiet || ranks.rank() != 0;
+  // the wear-law shorthands are config overrides of every trial
+  for (const models::Override& w : wear::wear_law_overrides(a.wear_law, a.law_params)) {
+    a.setup.sets.push_back(w.key + "=" + w.value);
+  }
   // the identity: everything that defines the study's trials (not threads, ranks or --out)
   std::ostringstream id;
   id << "study v1\n" << (a.setup.config.empty() ? std::string() : io::read_file(a.setup.config))
@@ -119,6 +126,7 @@ void add_study_command(CLI::App& app) {
                   "measured kinematics (CSV gait_pct,ap_mm,ie_deg or .sto) drawn over the AP and "
                   "IE envelopes (default: the config's output.measured_kinematics)");
   cmd->add_flag("--wear", args->setup.wear, "also run the wear simulation per trial");
+  add_wear_law_options(cmd, args->wear_law, args->law_params);
   cmd->add_option("--wear-cycles", args->setup.wear_cycles, "wear cycles per trial")
       ->capture_default_str();
   cmd->add_option("--wear-updates", args->setup.wear_updates, "geometry updates per wear trial")

@@ -10,6 +10,7 @@
 #include "engine/io/plot.h"
 #include "engine/io/table.h"
 #include "models/config.h"
+#include "wear/wear_law.h"
 #include "engine/io/output_folder.h"
 #include "tools/kneesim/commands.h"
 
@@ -31,7 +32,7 @@ struct WearArgs {
   bool no_plots = false;
   bool no_report = false;
   std::vector<long> convergence;  // update intervals of a convergence study
-  std::string wear_law = "archard";
+  std::string wear_law;                 // "" = the config's wear.law
   std::vector<std::string> law_params;  // name=value
 };
 
@@ -84,6 +85,7 @@ void run(const WearArgs& a) {
   std::vector<models::Override> overrides;
   for (const auto& s : a.sets) overrides.push_back(models::parse_override(s));
   if (!a.material.empty()) overrides.push_back({"material.name", "\"" + a.material + "\""});
+  for (auto& o : wear::wear_law_overrides(a.wear_law, a.law_params)) overrides.push_back(o);
   if (!a.convergence.empty()) {
     run_convergence(a, overrides);
     return;
@@ -99,8 +101,6 @@ void run(const WearArgs& a) {
   job.quiet = a.quiet;
   job.depth_maps = !a.no_depth_maps;
   job.plots = !a.no_plots;
-  job.wear_law = a.wear_law;
-  job.law_params = a.law_params;
   if (!a.no_report) {
     std::vector<std::string> sets = a.sets;
     if (!a.material.empty()) sets.push_back("material.name=\"" + a.material + "\" (--material)");
@@ -109,8 +109,7 @@ void run(const WearArgs& a) {
   std::ostringstream id;
   id << "wear v1\n" << (a.config.empty() ? std::string() : io::read_file(a.config)) << "\n";
   for (const auto& o : overrides) id << o.key << "=" << o.value << "\n";
-  id << a.cycles << " " << a.update_every << " " << a.wear_law;
-  for (const auto& p : a.law_params) id << " " << p;
+  id << a.cycles << " " << a.update_every;
   for (long s : a.schedule) id << " " << s;
   job.identity_text = id.str();
   run::check_wear_job(job);
@@ -162,18 +161,7 @@ void add_wear_command(CLI::App& app) {
                   "interval (e.g. 1000000,500000,250000,100000,50000) into DIR/every_<N>/ and "
                   "write DIR/convergence.csv and .md (changes against the finest)")
       ->delimiter(',');
-  cmd->add_option("--wear-law", args->wear_law,
-                  "wear law: archard, pressure_dependent_wear (k (p / p_ref)^-alpha), "
-                  "material_pressure (k (p / p_ref)^n with the material's own n and p_ref), "
-                  "cross_shear (k (1 + beta CS)), running_in (k (1 + a exp(-N / N_r))) or "
-                  "incubation (k (1 - exp(-N / N_i))), the extensions `kneesim diagnose "
-                  "knee-wear` fits")
-      ->capture_default_str();
-  cmd->add_option("--law-param", args->law_params,
-                  "wear-law parameters name=value: alpha, p_ref_MPa (pressure_dependent_wear), "
-                  "beta (cross_shear), running_in_excess, running_in_cycles (running_in), "
-                  "incubation_cycles (incubation)")
-      ->delimiter(',');
+  add_wear_law_options(cmd, args->wear_law, args->law_params);
   cmd->add_flag("--allow-any-wear-factor", args->allow_any_wear_factor,
                 "accept wear factors outside 1e-12..1e-6 mm^3/(N mm)");
   cmd->add_flag("--no-depth-maps", args->no_depth_maps,

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace kneesim::cli {
 
@@ -27,6 +28,24 @@ inline CLI::Validator finite_range(double lo, double hi) {
         return std::string();
       },
       "[" + allowed + "]");
+}
+
+// --wear-law NAME and --law-param name=value (repeatable, comma-separated): shorthands for
+// --set wear.law=NAME and --set wear.<name>=value (wear/wear_law.h wear_law_overrides)
+inline void add_wear_law_options(CLI::App* cmd, std::string& law,
+                                 std::vector<std::string>& params) {
+  cmd->add_option("--wear-law", law,
+                  "wear law, shorthand for --set wear.law=NAME: archard (k p ds), "
+                  "pressure_dependent_wear (k (p / p_ref)^-alpha p ds), material_pressure "
+                  "(k (p / p_ref)^n p ds with the material's own n and p_ref), cross_shear "
+                  "(k (1 + g CS) (p / p_ref)^-alpha p ds), contact_area (C (1 + g CS) ds in "
+                  "contact), running_in, incubation (docs/theory.md, wear laws)");
+  cmd->add_option("--law-param", params,
+                  "wear-law parameter name=value, shorthand for --set wear.<name>=value: "
+                  "cross_shear_gain (beta), pressure_exponent (alpha), reference_pressure_MPa "
+                  "(p_ref_MPa), running_in_excess, running_in_cycles, incubation_cycles; "
+                  "creep_ratio, creep_time_s with --set wear.creep=true")
+      ->delimiter(',');
 }
 
 void add_run_command(CLI::App& app);

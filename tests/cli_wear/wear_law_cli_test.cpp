@@ -47,6 +47,7 @@ TEST_CASE("every wear law: kneesim wear and kneesim compare give identical resul
       {"contact_area", {"cross_shear_gain=5.41"}, {"material.area_wear_coefficient=2e-9"}},
       {"running_in", {"running_in_excess=1", "running_in_cycles=1000"}, {}},
       {"incubation", {"incubation_cycles=1000"}, {}},
+      {"material_pressure", {}, {}},
       {"cross_shear", {"beta=5.41"}, {"wear.creep=true", "wear.creep_time_s=2000"}},
   };
   double archard_volume = 0.0;
@@ -124,6 +125,7 @@ TEST_CASE("every wear law: a kneesim study --wear trial equals kneesim wear of i
       {"contact_area", {"cross_shear_gain=5.41"}, {"material.area_wear_coefficient=2e-9"}},
       {"running_in", {"running_in_excess=1", "running_in_cycles=1000"}, {}},
       {"incubation", {"incubation_cycles=1000"}, {}},
+      {"material_pressure", {}, {}},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     const LawCase& c = cases[i];

@@ -17,6 +17,7 @@
 #include "tools/kneesim/diagnose_forces.h"
 #include "tools/kneesim/diagnose_knee.h"
 #include "tools/kneesim/diagnose_options.h"
+#include "tools/kneesim/diagnose_published.h"
 
 namespace kneesim::cli {
 namespace {
@@ -82,6 +83,7 @@ void add_diagnose_command(CLI::App& app) {
   add_diagnose_knee_wear(diagnose);
   add_diagnose_kinematics(diagnose);
   add_diagnose_forces(diagnose);
+  add_diagnose_published_wear(diagnose);
 }
 
 }  // namespace kneesim::cli

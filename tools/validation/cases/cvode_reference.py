@@ -1,8 +1,10 @@
 """The central-difference scheme against SUNDIALS CVODE integrating the same rigid-body
 equations (2 mm insert edge): the joint kinematics of the last of two cycles."""
+import math
+
 TITLE = "Explicit central difference against the CVODE reference"
 LONG = False
-NOISY = {"cpu_ratio": 0.5}  # a ratio of run times on a shared machine
+NOISY = {"cpu_ratio": math.inf}  # a ratio of run times: recorded, not compared (it moved 3x at load 17)
 
 
 def rms(a, b):

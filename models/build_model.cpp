@@ -15,6 +15,7 @@
 #include "models/deformable_insert.h"
 #include "models/distance_field_cache.h"
 #include "models/gait_assembly.h"
+#include "models/implant_check.h"
 #include "models/mesh_io.h"
 
 namespace kneesim::models {
@@ -121,6 +122,9 @@ Implant make_implant(const Config& c, double& base_y) {
     // put the insert base plane at y = 0 of T
     for (auto& v : imp.insert.vertices) v.y() -= base_y;
     base_y = 0.0;
+    // refuse what the rig cannot use (same mesh twice, inside out, upside down, femur not
+    // over the insert, flexion axis outside the femur) before any simulation
+    check_implant(c, imp);
   }
   imp.insert_volume = c.insert_closed || c.implant_kind == "generic"
                           ? enclosed_volume(imp.insert) : 0.0;
@@ -269,6 +273,11 @@ void apply_time_step(const engine::StableStepReport& r, engine::Model& m) {
 }
 
 }  // namespace
+
+Implant load_implant(const Config& c) {
+  double base_y = 0.0;
+  return make_implant(c, base_y);
+}
 
 GenericTkrParams generic_params(const Config& c) {
   GenericTkrParams p;

@@ -43,6 +43,10 @@ struct BuiltModel {
 // build. A different geometry key falls back to the full build.
 BuiltModel build_model(const Config& config, const BuiltModel* same_geometry = nullptr);
 
+// the implant's meshes as build_model loads them (femur in F, insert in T with its base at
+// y = 0), checked (models/implant_check.h); throws InputError naming the file
+Implant load_implant(const Config& config);
+
 // the insert's articular elements from a mesh in T: faces facing up more than min_normal_y
 engine::InsertSurface make_insert_surface(const TriMesh& insert, double base_y,
                                           double min_normal_y, std::vector<int>* to_insert,

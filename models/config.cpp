@@ -266,7 +266,7 @@ Registry make_registry(Config& c) {
   r.flag("implant.mesh.left_knee", c.mesh_left_knee,
     "mirror z after rotation (left knees)");
   r.vec3("implant.mesh.femur_origin_mm", c.femur_origin_mm,
-    "flexion-extension axis centre of the femoral component in the rotated mesh frame");
+    "flexion-extension axis (along z) through the femoral component, in the rotated mesh frame; the default is the files' origin (kneesim implant check fits the distal condylar arcs' centre)");
   r.number("implant.mesh.insert_base_y_mm", c.insert_base_y_mm, -100, 100,
     "height of the insert's base plane in the rotated frame (layer thickness is measured from it)");
   r.number("implant.mesh.articular_min_normal_y", c.articular_min_normal_y, -1, 1,

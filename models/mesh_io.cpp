@@ -200,7 +200,8 @@ TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& op
     if (!c.closed()) {
       fail(file, "the mesh is not closed: " + std::to_string(c.boundary_edges) +
                      " open edges and " + std::to_string(c.nonmanifold_edges) +
-                     " non-manifold edges; a closed manifold surface is required.");
+                     " non-manifold edges; a closed manifold surface is required (or "
+                     "implant.mesh.insert_closed = false, which gives no wear volume).");
     }
   }
   return m;

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <optional>
 
+#include "analysis/report/file_hash.h"
 #include "engine/io/vtp.h"
 
 namespace kneesim::run {
@@ -116,6 +118,21 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
       engine::kDofNames[built.stable_step.governing_dof];
   j["femur_mass_kg"] = config.femur_mass_kg;
   j["tibia_mass_kg"] = config.tibia_mass_kg;
+  if (config.implant_kind == "mesh") {
+    // which meshes, in which frame: enough to tell two runs' implants apart
+    nlohmann::json meshes;
+    for (const auto& [role, file] : {std::pair<std::string, std::string>{"femur", config.femur_mesh},
+                                     {"insert", config.insert_mesh}}) {
+      const std::filesystem::path p = models::resolve_path(config, file);
+      meshes[role] = {{"file", p.string()}, {"sha256", report::sha256_file(p)}};
+    }
+    meshes["units"] = config.mesh_units;
+    meshes["rotation_deg"] = config.mesh_rotation_deg;
+    meshes["femur_origin_mm"] = config.femur_origin_mm;
+    meshes["insert_base_y_mm"] = config.insert_base_y_mm;
+    meshes["left_knee"] = config.mesh_left_knee;
+    j["implant_meshes"] = meshes;
+  }
   j["build_seconds"] = built.build_seconds;
   j["sdf_seconds"] = built.sdf_seconds;
   return j;

@@ -160,7 +160,8 @@ TEST_CASE("import errors name the file") {
   CHECK(import_error(open, closed_options()) ==
         open.string() +
             ": the mesh is not closed: 3 open edges and 0 non-manifold edges; a "
-            "closed manifold surface is required.");
+            "closed manifold surface is required (or implant.mesh.insert_closed = false, "
+            "which gives no wear volume).");
   MeshImportOptions cm;
   cm.units.assign("cm");
   CHECK(import_error(dir.write("t.obj", kTetraObj), cm)

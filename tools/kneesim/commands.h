@@ -57,5 +57,6 @@ void add_diagnose_command(CLI::App& app);
 void add_study_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
 void add_config_command(CLI::App& app);
+void add_implant_command(CLI::App& app);
 
 }  // namespace kneesim::cli

@@ -85,6 +85,8 @@ void finish_contact_summary(const Model& model, const std::array<double, 2>& wei
     for (int i = 0; i < kNumDof; ++i) {
       const DofModel& dof = model.carriages[c].dofs[i];
       if (dof.mode != DofMode::kFree && dof.mode != DofMode::kForce) continue;
+      sum.stiffness[c][i] = stiffness[c][i];
+      if (dof.implicit) continue;  // stable in its own stiffness for any step
       sum.omega_max = std::max(sum.omega_max, std::sqrt(stiffness[c][i] / dof.mass));
     }
   }
@@ -94,10 +96,12 @@ namespace {
 
 // what the reduction needs of an element in contact: centroid and normal [m, -], world;
 // force on the femur [N]; elastic pressure [Pa]; penetration [m]; normal stiffness A dp/dd
-// [N/m]; friction slope [N s/m]
+// [N/m]; friction slope [N s/m] (the element's friction force on the femur is -ce slip_W)
 struct ContactTerms {
   Eigen::Vector3d c_W, n_W, force_W;
+  Eigen::Vector3d slip_W;  // slip velocity of the femur over the insert [m/s]
   double pressure = 0.0, penetration = 0.0, ke = 0.0, ce = 0.0;
+  double coulomb = 0.0;    // mu p A, the element's full Coulomb force [N]
 };
 
 // the element loop of one step: its constants and the element arrays it reads and writes,
@@ -251,6 +255,7 @@ struct ElementLoop {
     slip_velocity_T[e] = R_TW * v_slip;
     element_force_W[e] = terms.force_W;
     friction_viscosity[e] = terms.ce;
+    set_friction_terms(e, terms);
     return true;
   }
 
@@ -265,7 +270,16 @@ struct ElementLoop {
     t.penetration = penetration[e];
     t.ke = area[e] * ef_stiffness(law.law, law.foundation_modulus, penetration[e], thickness[e]);
     t.ce = friction_viscosity[e];
+    set_friction_terms(e, t);
     return t;
+  }
+
+  // the slip and the full Coulomb force from the element's slots, in both paths (the same
+  // bits for any thread count)
+  [[gnu::always_inline]] void set_friction_terms(int e, ContactTerms& t) const {
+    t.slip_W = R_WT * slip_velocity_T[e];
+    t.coulomb = t.ce * std::sqrt(t.slip_W.squaredNorm() +
+                                 law.slip_regularization * law.slip_regularization);
   }
 };
 
@@ -294,25 +308,35 @@ inline double quadratic_form(const Sym3& S, const Eigen::Vector3d& a) {
 // DOF about axis a has stiffness sum ke (a.u)^2 = a^T (sum ke u u^T) a and friction slope
 // sum ce (|a x r|^2 - (a.u)^2) = |a|^2 tr(Cr) - a^T Cr a - a^T Cu a with Cr = sum ce r r^T
 // and Cu = sum ce u u^T: three 3x3 sums per element instead of nine cross and dot products
+// The same second moments with the elements' full Coulomb force w = mu p A give
+// sum w |J_t|^2, which bounds the friction a DOF can receive: Phi = sum w |J_t| <=
+// sqrt(sum w * sum w |J_t|^2) (Cauchy-Schwarz; equal when |J_t| is the same everywhere).
 struct CarriageMoments {
-  Sym3 ku{}, cu{}, cr{};
-  void add(double ke, double ce, const Eigen::Vector3d& r, const Eigen::Vector3d& n) {
+  Sym3 ku{}, cu{}, cr{}, wu{}, wr{};
+  void add(double ke, double ce, double coulomb, const Eigen::Vector3d& r,
+           const Eigen::Vector3d& n) {
     const Eigen::Vector3d u = r.cross(n);
     add_outer(ku, ke, u);
     add_outer(cu, ce, u);
     add_outer(cr, ce, r);
+    add_outer(wu, coulomb, u);
+    add_outer(wr, coulomb, r);
   }
 };
 
 // fixed-order reduction over the elements in contact (ascending): totals, per-condyle
 // summary, moment about the world origin, and the moments of the tangent stiffness and
-// friction slope for the stability monitor and the implicit friction damping
+// friction slope for the stability monitor and the implicit friction
 struct ContactReduction {
   ContactSummary sum;
   Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment_O = Eigen::Vector3d::Zero();
   std::array<double, 2> weight{};
   // the translational DOFs (world axes) are the same for both carriages
-  std::array<double, 3> stiffness_t{}, friction_t{};
+  std::array<double, 3> stiffness_t{}, friction_t{}, capacity_t{};
+  // the friction's share of force and moment, and the total full Coulomb force sum mu p A
+  Eigen::Vector3d friction_force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d friction_moment_O = Eigen::Vector3d::Zero();
+  double coulomb = 0.0;
   std::array<CarriageMoments, 2> moments;
   std::array<Eigen::Vector3d, 2> pivots;
 
@@ -338,12 +362,17 @@ struct ContactReduction {
       // normal stiffness along the DOF's direction; friction acts on its tangential part
       stiffness_t[i] += t.ke * t.n_W[i] * t.n_W[i];
       friction_t[i] += t.ce * (1.0 - t.n_W[i] * t.n_W[i]);
+      capacity_t[i] += t.coulomb * (1.0 - t.n_W[i] * t.n_W[i]);
     }
     for (int c = 0; c < 2; ++c) {
-      if (rotates[c]) moments[c].add(t.ke, t.ce, t.c_W - pivots[c], t.n_W);
+      if (rotates[c]) moments[c].add(t.ke, t.ce, t.coulomb, t.c_W - pivots[c], t.n_W);
     }
     force += t.force_W;
     moment_O += t.c_W.cross(t.force_W);
+    const Eigen::Vector3d f_friction = -t.ce * t.slip_W;
+    friction_force += f_friction;
+    friction_moment_O += t.c_W.cross(f_friction);
+    coulomb += t.coulomb;
     const double p = t.pressure, d = t.penetration;
     const int side = s.medial[e] ? 0 : 1;
     sum.normal_force[side] += p * s.area[e];
@@ -356,22 +385,35 @@ struct ContactReduction {
     ++sum.elements_in_contact;
   }
 
-  // the summary into data.contact, the friction slopes into data.friction_damping (zero for
-  // a DOF that is neither free nor force-driven: the integrator does not read it)
+  // the summary into data.contact, the friction's force, slope and capacity per DOF into
+  // data.friction (zero for a DOF that is neither free nor force-driven: the integrator does
+  // not read it)
   void finish(const Model& model, Data& data) {
     std::array<std::array<double, kNumDof>, 2> stiffness{};
     for (int c = 0; c < 2; ++c) {
       const CarriageMoments& mc = moments[c];
       const double trace_cr = mc.cr[0] + mc.cr[1] + mc.cr[2];
+      const double trace_wr = mc.wr[0] + mc.wr[1] + mc.wr[2];
+      // the friction on the femur, on the tibia the reaction; its moment about the pivot
+      const double sign = c == 0 ? 1.0 : -1.0;
+      const Eigen::Vector3d torque =
+          sign * (friction_moment_O - pivots[c].cross(friction_force));
+      FrictionTerms& f = data.friction[c];
       for (int i = 0; i < 3; ++i) {
         const Eigen::Vector3d& a = data.axes[c][i];
         stiffness[c][i] = stiffness_t[i];
         stiffness[c][3 + i] = quadratic_form(mc.ku, a);
-        data.friction_damping[c][i] = is_moved(model, c, i) ? friction_t[i] : 0.0;
-        data.friction_damping[c][3 + i] =
-            is_moved(model, c, 3 + i)
-                ? a.squaredNorm() * trace_cr - quadratic_form(mc.cr, a) - quadratic_form(mc.cu, a)
-                : 0.0;
+        const bool moved_t = is_moved(model, c, i), moved_r = is_moved(model, c, 3 + i);
+        f.force[i] = moved_t ? sign * friction_force[i] : 0.0;
+        f.secant[i] = moved_t ? friction_t[i] : 0.0;
+        f.capacity[i] = moved_t ? std::sqrt(coulomb * capacity_t[i]) : 0.0;
+        f.force[3 + i] = moved_r ? torque.dot(a) : 0.0;
+        const double c_r =
+            a.squaredNorm() * trace_cr - quadratic_form(mc.cr, a) - quadratic_form(mc.cu, a);
+        f.secant[3 + i] = moved_r ? c_r : 0.0;
+        const double w_r =
+            a.squaredNorm() * trace_wr - quadratic_form(mc.wr, a) - quadratic_form(mc.wu, a);
+        f.capacity[3 + i] = moved_r ? std::sqrt(coulomb * std::max(w_r, 0.0)) : 0.0;
       }
     }
     sum.force_W = force;

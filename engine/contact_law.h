@@ -51,4 +51,11 @@ inline double spring_gap_force(const RestraintSpring& s, double x) {
   return -s.k_inside * x;
 }
 
+// -d spring_gap_force / dx [N/m or N m/rad]
+inline double spring_gap_stiffness(const RestraintSpring& s, double x) {
+  if (x > s.gap) return s.k_positive;
+  if (x < -s.gap) return s.k_negative;
+  return s.k_inside;
+}
+
 }  // namespace kneesim::engine

@@ -28,9 +28,20 @@ struct ContactSummary {
   double max_penetration = 0.0;          // [m]
   double max_penetration_ratio = 0.0;    // max d / h [-]
   int elements_in_contact = 0;
-  // highest natural frequency of the contact over the free DOFs, sqrt(K_i / m_i) with the
-  // tangent stiffness K_i = sum_e A_e dp/dd (J_ei . n_e)^2; the stability monitor [rad/s]
+  // the contact's tangent stiffness per DOF, K_i = sum_e A_e dp/dd (J_ei . n_e)^2 [N/m or
+  // N m/rad], zero for DOFs the integrator does not move
+  std::array<std::array<double, kNumDof>, 2> stiffness{};
+  // highest natural frequency sqrt(K_i / m_i) over the free DOFs that are integrated
+  // explicitly; the stability monitor [rad/s]
   double omega_max = 0.0;
+};
+
+// the regularized friction's share of one carriage's generalized forces at the current rates
+// (engine/implicit_friction.h); zero for DOFs the integrator does not move
+struct FrictionTerms {
+  std::array<double, kNumDof> force{};     // friction force or torque on the DOF [N or N m]
+  std::array<double, kNumDof> secant{};    // sum_e c_e |J_e,t|^2 [N s/m or N m s/rad]
+  std::array<double, kNumDof> capacity{};  // bound on the friction the DOF can receive [N or N m]
 };
 
 struct Data {
@@ -67,9 +78,11 @@ struct Data {
   double gait_pct = 0.0;
   std::array<std::array<double, kNumDof>, 2> applied{};      // waveform loads [N or N m]
   std::array<std::array<double, kNumDof>, 2> generalized{};  // total generalized force
-  // viscous slope of the regularized friction per DOF, integrated implicitly by the step
-  // (engine/step.cpp) [N s/m or N m s/rad]
-  std::array<std::array<double, kNumDof>, 2> friction_damping{};
+  // the contact friction per DOF of each carriage, integrated implicitly by the step
+  // (engine/implicit_friction.h)
+  std::array<FrictionTerms, 2> friction{};
+  // the restraint's tangent stiffness on the tibial DOFs [N/m or N m/rad] (AP and IE)
+  std::array<double, kNumDof> restraint_stiffness{};
   Eigen::Vector3d restraint_force = Eigen::Vector3d::Zero();  // AP force, IE torque summary:
                                                               // x = AP [N], y = IE [N m]
 

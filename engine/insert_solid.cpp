@@ -150,7 +150,7 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
   sum.force_W = femur_force;
   finish_contact_summary(model, weight, stiffness, sum);
   data.contact = sum;
-  for (auto& row : data.friction_damping) row.fill(0.0);  // friction is on the nodes
+  data.friction = {};  // friction is on the nodes
 
   // the tray carries the contact forces the insert receives (the opposite of the femur's
   // load), not the reaction of the base nodes (see the file comment: the insert's scaled mass

@@ -46,6 +46,10 @@ struct DofModel {
   double initial = 0.0;   // value at t = 0 and the locked value [m or rad]
   double mass = 1.0;      // generalized mass [kg or kg m^2]
   double damping = 0.0;   // carriage damper [N s/m or N m s/rad]
+  // a light, quasi-static DOF: its contact and restraint stiffness, contact damper and
+  // carriage damper are taken at the new rate (engine/step.cpp), so its mass may lie far
+  // below what an explicit step needs; it does not limit the time step
+  bool implicit = false;
 };
 
 struct CarriageModel {

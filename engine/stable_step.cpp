@@ -72,6 +72,14 @@ StableStepReport calc_stable_time_step(const Model& model, double peak_load,
                                        double damping_ratio, double safety) {
   StableStepReport report;
   Data data = make_data(model);
+  // light (implicit) DOFs are stable in their own stiffness for any step and do not limit it,
+  // unless no moved DOF is explicit (a hand-made rig): then every moved DOF counts
+  bool any_explicit = false;
+  for (const CarriageModel& cm : model.carriages) {
+    for (const DofModel& dof : cm.dofs) {
+      any_explicit |= !dof.implicit && (dof.mode == DofMode::kFree || dof.mode == DofMode::kForce);
+    }
+  }
   for (double flexion : flexion_probes) {
     State state = make_initial_state(model);
     // pose the femur at the probe flexion, everything else at its t = 0 value
@@ -84,6 +92,7 @@ StableStepReport calc_stable_time_step(const Model& model, double peak_load,
       for (int i = 0; i < kNumDof; ++i) {
         const DofModel& dof = model.carriages[c].dofs[i];
         if (dof.mode != DofMode::kFree && dof.mode != DofMode::kForce) continue;
+        if (dof.implicit && any_explicit) continue;
         double ki = k[c][i];
         for (const RestraintSpring& s : model.restraint) {
           if (c == 1 && (i == 4 || (i == 0 && s.kind == RestraintKind::kTranslational))) {

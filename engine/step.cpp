@@ -5,6 +5,7 @@
 
 #include "engine/contact.h"
 #include "engine/contact_law.h"
+#include "engine/implicit_friction.h"
 #include "engine/insert_solid.h"
 #include "engine/kinematics.h"
 #include "engine/solid/solid_build.h"
@@ -58,23 +59,30 @@ void apply_loads(const Model& model, const State& state, Data& data) {
 void apply_restraint(const Model& model, Data& data) {
   auto& Q = data.generalized[1];
   const double ap = data.q[1][0], ie = data.q[1][4];
-  double force_ap = 0.0, torque_ie = 0.0;
+  double force_ap = 0.0, torque_ie = 0.0, k_ap = 0.0, k_ie = 0.0;
   for (const RestraintSpring& s : model.restraint) {
     switch (s.kind) {
       case RestraintKind::kTranslational: {
         // a spring attached at z_arm: the IE rotation moves its end by z sin(ie) along x
-        const double f = spring_gap_force(s, ap + s.z_arm * std::sin(ie));
+        const double x = ap + s.z_arm * std::sin(ie);
+        const double f = spring_gap_force(s, x), k = spring_gap_stiffness(s, x);
+        const double arm = s.z_arm * std::cos(ie);
         force_ap += f;
-        torque_ie += s.z_arm * std::cos(ie) * f;
+        torque_ie += arm * f;
+        k_ap += k;
+        k_ie += k * arm * arm;
         break;
       }
       case RestraintKind::kRotational:
         torque_ie += spring_gap_force(s, ie);
+        k_ie += spring_gap_stiffness(s, ie);
         break;
     }
   }
   Q[0] += force_ap;
   Q[4] += torque_ie;
+  data.restraint_stiffness[0] = k_ap;
+  data.restraint_stiffness[4] = k_ie;
   data.restraint_force = Eigen::Vector3d(force_ap, torque_ie, 0.0);
 }
 
@@ -98,13 +106,27 @@ void integrate_carriage(const Model& model, int c, State& state, const Data& dat
         break;
       case DofMode::kFree:
       case DofMode::kForce: {
-        // the regularized friction is a stiff damper near stick (slope mu p A / eps): its
-        // linear part is taken at the new velocity, which keeps the update stable for any
-        // eps; the rest of the force, as in any central-difference step, at the old one
-        const double c_f = data.friction_damping[c][i];
-        rate = (rate + dt * (data.generalized[c][i] + c_f * rate - dof.damping * rate) /
-                           dof.mass) /
-               (1.0 + dt * c_f / dof.mass);
+        // the regularized friction is a stiff damper near stick (slope mu p A / eps): it is
+        // taken at the new rate (engine/implicit_friction.h), which keeps the update stable
+        // for any eps; the rest of the force, as in any central-difference step, at the old one
+        const FrictionTerms& f = data.friction[c];
+        if (!dof.implicit && !(f.secant[i] > 0.0)) {
+          // no friction on an explicit DOF: the plain central-difference update
+          rate += dt * (data.generalized[c][i] - dof.damping * rate) / dof.mass;
+          break;
+        }
+        double a = dof.mass / dt;  // a (u - v) = G + F(u)
+        double other = data.generalized[c][i] - f.force[i] - dof.damping * rate;
+        if (dof.implicit) {
+          // a light DOF: its stiffness k (the elastic force at x(n+1) = x(n) + dt u, linear),
+          // the contact damper beta k_contact and the carriage damper at the new rate u too
+          const double k_contact = data.contact.stiffness[c][i];
+          const double k = k_contact + (c == 1 ? data.restraint_stiffness[i] : 0.0);
+          a += dof.damping + model.contact.damping_beta * k_contact + k * dt;
+          other -= k * dt * rate;
+        }
+        rate = find_implicit_friction_rate(rate, a, other, f.force[i], f.secant[i],
+                                           f.capacity[i]);
         break;
       }
     }

@@ -409,8 +409,8 @@ BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
   for (int carriage = 0; carriage < 2; ++carriage) {
     engine::CarriageModel& cm = m.carriages[carriage];
     const auto& modes = carriage == 0 ? c.femur_dofs : c.tibia_dofs;
-    const double mass = carriage == 0 ? c.femur_mass_kg : c.tibia_mass_kg;
-    const double inertia = carriage == 0 ? c.femur_inertia_kgm2 : c.tibia_inertia_kgm2;
+    const double mass[6] = {c.ap_mass_kg,      c.is_mass_kg,      c.ml_mass_kg,
+                            c.vv_inertia_kgm2, c.ie_inertia_kgm2, c.fe_inertia_kgm2};
     const double damping[6] = {c.ap_damping_Ns_per_m,    c.is_damping_Ns_per_m,
                                c.ml_damping_Ns_per_m,    c.vv_damping_Nms_per_rad,
                                c.ie_damping_Nms_per_rad, c.ie_damping_Nms_per_rad};
@@ -440,8 +440,12 @@ BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
         // a free tibial VV starts aligned with the femur (both condyles in contact at t = 0)
         d.initial = c.femur_vv_deg * kDeg;
       }
-      d.mass = engine::is_rotation(i) ? inertia : mass;
+      d.mass = mass[i];
       d.damping = damping[i];
+      // AP and IE are light, quasi-static DOFs (engine/model.h): their contact stiffness spans
+      // two orders of magnitude between stance and swing, so no explicit mass is both small
+      // enough for the swing phase and large enough for the stance step
+      d.implicit = i == static_cast<int>(engine::Dof::kAp) || i == static_cast<int>(engine::Dof::kIe);
       map_channel(c, m.gait, carriage, i, d);
     }
   }
@@ -467,7 +471,6 @@ BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
   }
   m.carriages[1].X_BP.translation() = -tibial_axis_W;
   m.restraint = make_restraint(c);
-
   // contact
   const double friction = c.friction_override >= 0.0 ? c.friction_override : mat.friction;
   m.contact.law = c.contact_law == "linear" ? engine::ContactLaw::kLinear

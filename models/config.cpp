@@ -336,14 +336,18 @@ Registry make_registry(Config& c) {
     "medial offset of the tibial varus-valgus and internal-external axis");
   r.number("rig.femur_vv_deg", c.femur_vv_deg, -15, 15,
     "varus-valgus alignment of the femoral component with locked femoral VV, + varus");
-  r.number("rig.femur_mass_kg", c.femur_mass_kg, 0.01, 1000,
-    "femoral carriage mass (each translational DOF)");
-  r.number("rig.tibia_mass_kg", c.tibia_mass_kg, 0.01, 1000,
-    "tibial carriage mass (each translational DOF)");
-  r.number("rig.femur_inertia_kgm2", c.femur_inertia_kgm2, 1e-6, 100,
-    "femoral carriage rotary inertia (each rotational DOF)");
-  r.number("rig.tibia_inertia_kgm2", c.tibia_inertia_kgm2, 1e-6, 100,
-    "tibial carriage rotary inertia (each rotational DOF)");
+  r.number("rig.ap_mass_kg", c.ap_mass_kg, 1e-4, 1000,
+    "carriage mass in anterior-posterior translation (a light DOF, integrated implicitly; project assumption)");
+  r.number("rig.is_mass_kg", c.is_mass_kg, 0.01, 1000,
+    "carriage mass in inferior-superior translation (the femur's axial DOF; sets the time step; project assumption)");
+  r.number("rig.ml_mass_kg", c.ml_mass_kg, 1e-3, 1000,
+    "carriage mass in medial-lateral translation (project assumption)");
+  r.number("rig.vv_inertia_kgm2", c.vv_inertia_kgm2, 1e-5, 100,
+    "carriage rotary inertia in varus-valgus (project assumption)");
+  r.number("rig.ie_inertia_kgm2", c.ie_inertia_kgm2, 1e-8, 100,
+    "carriage rotary inertia in internal-external rotation (a light DOF, integrated implicitly; project assumption)");
+  r.number("rig.fe_inertia_kgm2", c.fe_inertia_kgm2, 1e-5, 100,
+    "carriage rotary inertia in flexion-extension (prescribed in every preset; project assumption)");
   r.number("rig.ap_damping_Ns_per_m", c.ap_damping_Ns_per_m, 0, 1e5,
     "carriage damper on anterior-posterior translation");
   r.number("rig.ml_damping_Ns_per_m", c.ml_damping_Ns_per_m, 0, 1e5,
@@ -351,7 +355,7 @@ Registry make_registry(Config& c) {
   r.number("rig.is_damping_Ns_per_m", c.is_damping_Ns_per_m, 0, 1e5,
     "carriage damper on inferior-superior translation");
   r.number("rig.ie_damping_Nms_per_rad", c.ie_damping_Nms_per_rad, 0, 1e3,
-    "carriage damper on internal-external rotation");
+    "carriage damper on internal-external (and flexion-extension) rotation");
   r.number("rig.vv_damping_Nms_per_rad", c.vv_damping_Nms_per_rad, 0, 1e3,
     "carriage damper on varus-valgus rotation");
   r.choice("rig.restraint.kind", c.restraint, {"springs", "linear", "none"},

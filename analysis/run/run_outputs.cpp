@@ -116,8 +116,16 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
   j["stable_step_governing_dof"] =
       std::string(built.stable_step.governing_carriage == 0 ? "femur_" : "tibia_") +
       engine::kDofNames[built.stable_step.governing_dof];
-  j["femur_mass_kg"] = config.femur_mass_kg;
-  j["tibia_mass_kg"] = config.tibia_mass_kg;
+  for (int i = 0; i < engine::kNumDof; ++i) {
+    // the generalized mass of each DOF the integrator moves, and whether it is a light one
+    for (int c = 0; c < 2; ++c) {
+      const engine::DofModel& d = m.carriages[c].dofs[i];
+      if (d.mode != engine::DofMode::kFree && d.mode != engine::DofMode::kForce) continue;
+      const std::string key = std::string(c == 0 ? "femur_" : "tibia_") + engine::kDofNames[i];
+      j["rig_masses"][key] = d.mass;
+      if (d.implicit) j["rig_light_dofs"].push_back(key);
+    }
+  }
   if (config.implant_kind == "mesh") {
     // which meshes, in which frame: enough to tell two runs' implants apart
     nlohmann::json meshes;

@@ -18,10 +18,15 @@ using namespace kneesim::test;
 
 namespace {
 
+// The gait runs 5x fast (0.2 s) to keep the test short. At that speed the rig's light IE
+// (3e-5 kg m^2) releases fast enough to shake the mass-scaled solid: kinetic / internal energy
+// 8.6 % at its maximum, against 0.1 % at the real 1 s gait (measured, 3 mm elements). The test
+// checks the deformable outputs, not the rig, so it keeps the heavier 0.01 kg m^2 IE inertia
+// (0.8 % at 0.2 s).
 const std::vector<std::string> kCoarse = {
     "--set", "insert=deformable",       "--set", "deformable.element_size_mm=3",
     "--set", "deformable.layers=3",     "--set", "implant.edge_length_mm=2",
-    "--set", "gait.period_s=0.2"};
+    "--set", "gait.period_s=0.2",       "--set", "rig.ie_inertia_kgm2=0.01"};
 
 // header and rows of a CSV file written by kneesim (first column may be a label)
 struct Csv {

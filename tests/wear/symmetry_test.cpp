@@ -8,9 +8,12 @@
 //  - all tibial rotations and ML locked: both condyles see translated copies of the same
 //    contact, so medial and lateral volumes agree to rounding (1e-9 relative);
 //  - the stanmore rig's free ML, VV and IE: the diagonal asymmetry gives both condyles the
-//    same small ML friction/contact force, the tibia drifts ~0.06 mm in ML, and the volumes
-//    differ by ~2e-4 (measured); the tolerance is 1e-3, ~5x that, while a 1 mm medial offset
-//    of the tibial VV pivot (a control run) exceeds it many times over, so the test can fail.
+//    same small ML friction/contact force, the tibia drifts ~0.06 mm in ML and, its light IE
+//    (3e-5 kg m^2) following the asymmetry's small friction moment, +-0.025 deg in IE; the
+//    volumes differ by 1.04e-3 (measured; 2e-4 with the former 0.01 kg m^2 IE inertia, whose
+//    inertia filtered that moment). The tolerance is 3e-3, ~3x that, while a 1 mm medial
+//    offset of the tibial VV pivot (a control run, 8.9e-2) exceeds it 30 times, so the test
+//    can fail.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -120,10 +123,10 @@ TEST_CASE("the generic implant is mirror-symmetric about the sagittal plane (ver
 }
 
 TEST_CASE("symmetric loading of the symmetric implant: medial = lateral wear") {
-  SUBCASE("stanmore rig, ML, VV and IE free: within 1e-3") {
+  SUBCASE("stanmore rig, ML, VV and IE free: within 3e-3") {
     const SideVolumes s = run(kSymmetric, 1'000'000, 500'000);
     CHECK(s.medial > 0.0);
-    CHECK(s.rel() < 1e-3);
+    CHECK(s.rel() < 3e-3);
     CHECK(s.max_ml < 1e-4);  // the midline loading keeps the tibia centred (0.1 mm)
   }
   SUBCASE("tibial ML, VV and IE locked: equal to rounding (translated condyles)") {

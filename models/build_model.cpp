@@ -449,6 +449,23 @@ BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
       map_channel(c, m.gait, carriage, i, d);
     }
   }
+  // each joint DOF moves on one carriage only: a pair moved on both has nothing but the
+  // restraint and the carriage masses to hold its common motion, and the explicit step's
+  // per-DOF implicit friction locks the two together (engine/implicit_friction.h)
+  if (m.integrator == engine::IntegratorKind::kCentralDifference) {
+    for (int i = 0; i < engine::kNumDof; ++i) {
+      auto moved = [&](int carriage) {
+        const engine::DofMode mode = m.carriages[carriage].dofs[i].mode;
+        return mode == engine::DofMode::kFree || mode == engine::DofMode::kForce;
+      };
+      if (!moved(0) || !moved(1)) continue;
+      throw InputError(config_name(c) + ": rig.femur." + engine::kDofNames[i] + " = \"" +
+                       c.femur_dofs[i] + "\" and rig.tibia." + engine::kDofNames[i] + " = \"" +
+                       c.tibia_dofs[i] + "\" move the same joint DOF on both carriages; "
+                       "allowed: one of them \"locked\" or \"prescribed\" (or "
+                       "solver.integrator = \"cvode\", which integrates such a rig)");
+    }
+  }
   // femur: pivot on the FE axis, the component turned and offset from it (rig.alignment), first
   // placed just above the insert
   m.carriages[0].X_BP = femur_on_carriage(c);

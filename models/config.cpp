@@ -475,48 +475,84 @@ Registry make_registry(Config& c) {
   return r;
 }
 
+// Every rig parameter of a preset, with its source (docs/user-guide.md#rig-presets has the
+// table, docs/validation.md#rig-parameters the measured sensitivity of the AP and IE ranges to
+// each assumed one). The carriage masses and dampers are the same for every preset
+// (config.h: this project's assumptions, docs/validation.md#carriage-masses).
 void apply_rig_preset(Config& c) {
   using A = std::array<std::string, 6>;  // ap, is, ml, vv, ie, fe
   if (c.rig_preset == "stanmore" || c.rig_preset == "iso") {
+    // a force-controlled Stanmore/Instron-type simulator (Pal 2008's rig): the femoral
+    // carriage flexes (FE prescribed) and carries the axial load (IS force), its other DOFs
+    // locked; the tibial carriage takes the AP force and IE torque against the restraint and
+    // floats in ML and VV (physics.md section 1: this project's reading of such a rig; Pal's
+    // text names the simulator and its springs, not every DOF)
     c.femur_dofs = A{"locked", "force", "locked", "locked", "locked", "prescribed"};
     c.tibia_dofs = A{"force", "locked", "free", "free", "force", "locked"};
+    // assumption: the tibial VV/IE pivot 5 mm medial of the insert centre, for a medial share
+    // of about 60 % in stance (61 % on the built-in implant; 50 % central, 73 % at 10 mm; IE
+    // range -6 % / +16 %: docs/validation.md#rig-parameters). The axial load line's offset has
+    // no effect while the femoral VV is locked (the lock takes its moment)
     c.axial_offset_mm = 5.0;
     c.tibia_pivot_medial_mm = 5.0;
   } else if (c.rig_preset == "materials_study") {
-    // the materials study's rig (physics.md section 1): femoral FE prescribed, IS axial force,
-    // AP free, IE locked; tibial AP force and IE torque with the linear restraint, IS and FE
-    // locked. The study lists ML and VV free on both carriages; two rigid carriages free in the
-    // same DOF leave their common motion unrestrained (only the carriage dampers hold it: the
-    // pair drifts off in VV, "runaway motion" at t = 0.09 s), so each joint DOF is freed once,
-    // on the femoral carriage, which carries the medially offset axial load: its VV freedom is
-    // what shares the load 60:40 between the condyles (physics.md section 1)
+    // the materials study's boundary conditions (its text, physics.md section 6): femoral
+    // component free in ML, AP and VV, constrained in IE, flexion displacement-controlled,
+    // axial load on it offset medially for a 60:40 split; tibial insert free in ML and VV,
+    // constrained in SI and FE, AP force and IE torque on it against four linear springs.
+    // Two carriages free in the same DOF: the femur free in AP carries no AP force across the
+    // joint, so the springs take the whole AP force (tibial travel F_AP / k, the restraint
+    // force equal to the applied one) and the joint's AP follows the contact alone; in ML and
+    // VV nothing restrains the pair's common motion. kneesim frees each joint DOF once, on the
+    // femur: AP, ML and VV free there, the tibia locked in AP, ML and VV. The joint motion is
+    // the literal rig's: the CVODE reference of the literal rig (femur AP free, tibia AP
+    // force with the springs) gives the same joint AP and IE ranges within 1-2 % and a tibial
+    // travel of -6.3..2.6 mm (docs/validation.md#rig-presets,
+    // tests/cli_wear/rig_presets_test.cpp)
     c.femur_dofs = A{"free", "force", "free", "free", "locked", "prescribed"};
-    c.tibia_dofs = A{"force", "locked", "locked", "locked", "force", "locked"};
+    c.tibia_dofs = A{"locked", "locked", "locked", "locked", "force", "locked"};
+    // the study gives the split, not the offset (assumption): 5 mm gives 61 % medial on the
+    // built-in implant (56 % at 3 mm, 65 % at 7 mm; IE range -1.0 % / +1.8 %)
     c.axial_offset_mm = 5.0;
+    // assumption: the IE axis through the insert centre (5 mm medial: IE range +0.4 %)
     c.tibia_pivot_medial_mm = 0.0;
-  } else {  // displacement
+  } else {  // displacement: AP and IE prescribed (ISO 14243-3-shaped), otherwise as stanmore
     c.femur_dofs = A{"locked", "force", "locked", "locked", "locked", "prescribed"};
     c.tibia_dofs = A{"prescribed", "locked", "free", "free", "prescribed", "locked"};
     c.axial_offset_mm = 5.0;
     c.tibia_pivot_medial_mm = 5.0;
   }
-  if (c.rig_preset == "stanmore") {  // Pal 2008
+  if (c.rig_preset == "stanmore") {
+    // Pal 2008's Stanmore springs (its table of study variables, mean): anterior 4.75 N/mm,
+    // posterior 22.18 N/mm, insert-to-springs distance 3.0 mm (the table's mean; its text
+    // reads 2.5 mm: AP range -4.4 %, IE -1.4 %, docs/validation.md#rig-parameters; the table
+    // is what Pal's probabilistic study sampled, and `kneesim study` centres on it). Four
+    // springs, two per side of the IE axis; their lever arm is this project's assumption
+    // (35 mm; Pal gives none: IE range +8.0 % at 25 mm, -9.5 % at 45 mm)
     c.restraint = "springs";
     c.gap_mm = 3.0;
     c.k_anterior_N_per_mm = 4.75;
     c.k_posterior_N_per_mm = 22.18;
     c.k_inside_N_per_mm = 0.0;
+    c.spring_arm_mm = 35.0;
     c.ie_gap_deg = 0.0;
     c.k_ie_inside_Nm_per_deg = c.k_ie_Nm_per_deg = 0.0;
   } else if (c.rig_preset == "materials_study") {
+    // the study's four linear springs of 10.4 N/mm each: 41.6 N/mm in AP (reading the
+    // stiffness as the whole restraint's, 10.4 N/mm, would let the tibial carriage travel
+    // -25..+11 mm under the AP force); 0.30 N m/deg in IE, no gap. The AP springs act only on
+    // a free tibial AP (rig.tibia.ap = "force"): in the preset they take the whole AP force
     c.restraint = "linear";
     c.gap_mm = 0.0;
-    c.k_anterior_N_per_mm = c.k_posterior_N_per_mm = 10.4;
+    c.k_anterior_N_per_mm = c.k_posterior_N_per_mm = 4.0 * 10.4;
     c.k_inside_N_per_mm = 0.0;
     c.ie_gap_deg = 0.0;
     c.k_ie_inside_Nm_per_deg = 0.0;
     c.k_ie_Nm_per_deg = 0.30;
-  } else if (c.rig_preset == "iso") {  // ISO 14243-1:2009-like, approx.
+  } else if (c.rig_preset == "iso") {
+    // ISO 14243-1:2009-like soft-tissue restraint: physics.md's values, a recollection of the
+    // standard that could not be checked against its text (approximate, unverified; its gaps
+    // move the AP / IE range by up to 5 % / 7 %: docs/validation.md#rig-parameters)
     c.restraint = "linear";
     c.gap_mm = 2.5;
     c.k_inside_N_per_mm = 9.3;

@@ -3,7 +3,8 @@
 // data.generalized). Reference: the table of physics.md section 2 —
 //   stanmore (Pal 2008): gap 3 mm, anterior 4.75 N/mm, posterior 22.18 N/mm, no stiffness
 //     inside, from four springs at +-35 mm (two per side, each half the stiffness);
-//   materials_study: linear 10.4 N/mm AP, 0.30 N m/deg IE, no gap;
+//   materials_study: the study's four linear springs of 10.4 N/mm, 41.6 N/mm in AP (acting
+//     when the tibial AP is freed), 0.30 N m/deg in IE, no gap;
 //   iso (ISO 14243-1:2009-like, approx.): AP gap 2.5 mm, 9.3 N/mm inside, 44 N/mm beyond;
 //     IE gap 6 deg, 0.13 N m/deg inside, 0.36 beyond;
 //   displacement: no restraint (AP and IE prescribed).
@@ -76,7 +77,7 @@ TEST_CASE("stanmore restraint: Pal 2008 spring-gap law") {
 TEST_CASE("materials_study restraint: linear AP and IE springs") {
   const Restraint r = make_restraint("materials_study");
   for (double x : {-4e-3, -1e-3, 1e-3, 4e-3}) {
-    CHECK(r.at(x, 0.0).x() == doctest::Approx(-10.4e3 * x).epsilon(1e-9));
+    CHECK(r.at(x, 0.0).x() == doctest::Approx(-4.0 * 10.4e3 * x).epsilon(1e-9));
   }
   CHECK(r.at(0.0, 5.0 * kDeg).y() == doctest::Approx(-0.30 * 5.0).epsilon(1e-9).scale(0));
   CHECK(r.at(0.0, -5.0 * kDeg).y() == doctest::Approx(0.30 * 5.0).epsilon(1e-9).scale(0));

@@ -98,13 +98,7 @@ std::shared_ptr<LinearModel> linearize(const Problem& pb, const Eigen::VectorXd&
   const Eigen::VectorXd none;
   lm->base_params = base;
   lm->f0 = c.predict(Effect::none, base, none, rows);
-  auto step_of = [](const ParamSpec& s, double v) {
-    // a step inside the bounds, in the fitted space
-    double h = s.log_scale ? 0.05 : 0.02 * (s.upper - s.lower);
-    const double up = s.log_scale ? std::log(s.upper) : s.upper;
-    if (fitted_space(s, v) + h > up) h = -h;
-    return h;
-  };
+  auto step_of = [](const ParamSpec& s, double v) { return coarse_difference_step(s, v); };
   auto from_fitted = [](const ParamSpec& s, double z) { return s.log_scale ? std::exp(z) : z; };
   lm->jb.resize(lm->f0.size(), base.size());
   for (Eigen::Index j = 0; j < base.size(); ++j) {

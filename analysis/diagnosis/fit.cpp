@@ -47,7 +47,10 @@ FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>
     // forward-difference Jacobian in z
     Eigen::MatrixXd jac(r.size(), n);
     for (Eigen::Index j = 0; j < n; ++j) {
-      const double h = 1e-6 * std::max(1.0, std::abs(z[j]));
+      const double h = control.coarse_jacobian
+                           ? coarse_difference_step(specs[static_cast<size_t>(j)],
+                                                    from_z(specs[static_cast<size_t>(j)], z[j]))
+                           : 1e-6 * std::max(1.0, std::abs(z[j]));
       Eigen::VectorXd zj = z;
       zj[j] += h;
       jac.col(j) = (f(params_of(specs, zj)) - r) / h;
@@ -91,6 +94,13 @@ FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>
 }
 
 }  // namespace
+
+double coarse_difference_step(const ParamSpec& s, double value) {
+  double h = s.log_scale ? 0.05 : 0.02 * (s.upper - s.lower);
+  const double up = s.log_scale ? std::log(s.upper) : s.upper;
+  if (to_z(s, value) + h > up) h = -h;
+  return h;
+}
 
 FitResult fit_least_squares(const ResidualsFn& residuals, const std::vector<ParamSpec>& specs,
                             const Eigen::VectorXd& initial, bool multi_start,

@@ -179,6 +179,10 @@ DiagnosisCase make_kinematics_case(MeasuredData data, std::shared_ptr<Kinematics
   // every evaluation is a simulation: few iterations, stop at 0.01 % cost decrease
   c.fit_control.max_iterations = 8;
   c.fit_control.tolerance = 1e-4;
+  // differences over 2 % of each parameter's range: the rig's friction is capped at Coulomb's
+  // bound per step (engine/implicit_friction.h), so a change of 1e-6 in mu moves the trace by
+  // the stick/slip branches it flips, not by its effect (fit.h)
+  c.fit_control.coarse_jacobian = true;
   c.split_rule = "2-fold cross-validation by gait phase (fit on stance 0-" +
                  std::to_string(static_cast<int>(split)) + " %, predict swing; fit on swing, "
                  "predict stance)";

@@ -17,6 +17,7 @@
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/json_out.h"
+#include "engine/io/interrupt.h"
 #include "engine/io/output_folder.h"
 #include "engine/io/plot.h"
 #include "analysis/report/wear_report.h"
@@ -295,7 +296,21 @@ nlohmann::json run_wear_job(const WearJob& j) {
       write_depth_map(j.out / name, built.model, depth);
     }
   };
-  const wear::WearResult result = wear::run_wear(built, o);
+  // wear.csv grows with each update: until the summary it is a partial table, and an
+  // interrupted or failed command leaves it as wear.partial.csv (engine/io/interrupt.h)
+  const int partial_slot = io::register_partial(j.out / "wear.csv", j.out / "wear.partial.csv");
+  wear::WearResult result;
+  try {
+    result = wear::run_wear(built, o);
+  } catch (...) {
+    // e.g. a full disk while an update's table or map was written
+    io::unregister_partial(partial_slot);
+    std::error_code ec;
+    if (fs::exists(j.out / "wear.csv", ec)) {
+      fs::rename(j.out / "wear.csv", j.out / "wear.partial.csv", ec);
+    }
+    throw;
+  }
   bar.finish();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -318,6 +333,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
     summary["failure"] = result.message;
     io::write_json(j.out / "summary.failed.json", summary);
     // what was complete stays under a name that cannot pass for a finished run's table
+    io::unregister_partial(partial_slot);
     std::string kept = "no geometry update was completed";
     if (fs::exists(j.out / "wear.csv")) {
       fs::rename(j.out / "wear.csv", j.out / "wear.partial.csv");
@@ -410,6 +426,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
   fs::remove(j.out / "summary.failed.json");
   fs::remove(j.out / "wear.partial.csv");
   io::write_json(j.out / "summary.json", summary);
+  io::unregister_partial(partial_slot);  // complete (a failed write above leaves it partial)
   fs::remove(o.checkpoint);  // complete: nothing to resume
   if (want_scene) {
     // the report reads the files just written, so it shows what they say

@@ -12,7 +12,13 @@
 namespace kneesim::io {
 
 // creates `dir` if needed and checks that a file can be written in it; throws InputError
-// ("--out 'x' is an existing file, not a folder; ...") naming `flag` and the folder
+// ("--out 'x' is an existing file, not a folder; ...") naming `flag` and the folder.
+// Then claims it for this process until it exits: DIR/.kneesim.lock (pid, command, start;
+// an flock, so the lock of a killed process is taken over) refuses a second kneesim process
+// naming the first; DIR/.kneesim-command names the command whose results the folder holds,
+// and a different command is refused while the folder holds any (non-hidden) file; files a
+// killed run left in the middle of an atomic write (NAME.tmp.PID) are removed. MPI ranks other
+// than 0 share rank 0's claim.
 void check_output_folder(const std::filesystem::path& dir, const std::string& flag = "--out");
 
 // bytes free for an unprivileged writer on the file system holding `dir` (an existing folder);

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "engine/io/interrupt.h"
 #include "engine/io/source_tree.h"
 
 namespace kneesim::io {
@@ -41,6 +42,11 @@ pid_t spawn_python(const std::vector<std::string>& args, int socket_fd) {
   const pid_t pid = ::fork();
   if (pid == 0) {
     if (socket_fd >= 0 && (::dup2(socket_fd, 0) < 0 || ::dup2(socket_fd, 3) < 0)) ::_exit(127);
+    // a Ctrl-C reaches the whole process group: Python started with SIGINT ignored installs
+    // no KeyboardInterrupt handler (no traceback); kneesim's own handler stops it with SIGTERM
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    ::sigaction(SIGINT, &ignore, nullptr);
     ::execve(kPython, argv.data(), envp.data());
     ::_exit(127);
   }
@@ -60,6 +66,7 @@ struct Session {
   pid_t pid = -1;
   int fd = -1;
   std::vector<std::string> queued;
+  int child_slot = -1;  // engine/io/interrupt.h
 };
 std::mutex g_mutex;
 Session* g_session = nullptr;
@@ -96,7 +103,10 @@ bool run_plot(const std::string& script, const std::vector<std::string>& args) {
   std::vector<std::string> argv = {path};
   argv.insert(argv.end(), args.begin(), args.end());
   const pid_t pid = spawn_python(argv, -1);
-  if (pid < 0 || !wait_ok(pid)) {
+  const int child = pid > 0 ? register_child(pid) : -1;
+  const bool ok = pid > 0 && wait_ok(pid);
+  unregister_child(child);
+  if (!ok) {
     warn_failed(script);
     return false;
   }
@@ -120,7 +130,7 @@ PlotSession::PlotSession() {
     wait_ok(pid);
     return;
   }
-  g_session = new Session{pid, sv[0], {}};
+  g_session = new Session{pid, sv[0], {}, register_child(pid)};
 }
 
 PlotSession::~PlotSession() {
@@ -146,6 +156,7 @@ PlotSession::~PlotSession() {
   }
   ::close(s->fd);
   wait_ok(s->pid);
+  unregister_child(s->child_slot);
   size_t pos = 0;
   for (const std::string& script : s->queued) {
     const size_t end = replies.find('\n', pos);

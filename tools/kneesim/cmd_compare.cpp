@@ -286,6 +286,16 @@ void add_compare_command(CLI::App& app) {
                 "continue a killed comparison: each material from its DIR/<material>/"
                 "wear.checkpoint, a material that had finished from its summary.json");
   cmd->callback([args] {
+    // each material runs in its own folder DIR/<material>: twice would race on its files
+    for (size_t i = 0; i < args->materials.size(); ++i) {
+      for (size_t k = 0; k < i; ++k) {
+        if (args->materials[i] == args->materials[k]) {
+          throw InputError("--materials lists '" + args->materials[i] + "' twice; allowed: "
+                           "each material once (its results go to " +
+                           (std::filesystem::path(args->out) / args->materials[i]).string() + ").");
+        }
+      }
+    }
     io::check_output_folder(args->out);  // before any work
     run(*args);
   });

@@ -132,7 +132,8 @@ void add_study_command(CLI::App& app) {
   cmd->add_option("--wear-updates", args->setup.wear_updates, "geometry updates per wear trial")
       ->capture_default_str();
   cmd->add_option("--threads", args->threads, "threads per rank (0: OMP_NUM_THREADS or all cores)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(0, 4096));
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_flag("--resume", args->resume,
                 "continue the study in DIR from its journal (no finished trial is lost or run "

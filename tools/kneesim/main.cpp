@@ -7,6 +7,7 @@
 
 #include "analysis/report/provenance.h"
 #include "engine/errors.h"
+#include "engine/io/interrupt.h"
 #include "tools/kneesim/commands.h"
 
 int main(int argc, char** argv) {
@@ -19,6 +20,8 @@ int main(int argc, char** argv) {
       [](const CLI::App*, const CLI::Error& e) { return "error: " + std::string(e.what()) + "\n"; });
   app.set_version_flag("--version", kneesim::report::kVersion);
   kneesim::report::set_command_line(argc, argv);
+  // SIGINT / SIGTERM: tables in progress renamed *.partial.*, exit 130 / 143
+  kneesim::io::install_interrupt_handlers();
   kneesim::cli::add_run_command(app);
   kneesim::cli::add_particles_command(app);
   kneesim::cli::add_wear_command(app);
@@ -51,15 +54,18 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
   } catch (const kneesim::InputError& e) {
+    kneesim::io::abandon_outputs();
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
   } catch (const std::filesystem::filesystem_error& e) {
     // a file operation that failed mid-run (disk full, folder removed): one sentence, not the
     // library's "filesystem error: ..." text
+    kneesim::io::abandon_outputs();
     std::fprintf(stderr, "error: could not write or read '%s' (%s).\n", e.path1().c_str(),
                  e.code().message().c_str());
     return 1;
   } catch (const std::exception& e) {
+    kneesim::io::abandon_outputs();
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
   }

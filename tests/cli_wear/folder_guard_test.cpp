@@ -1,0 +1,206 @@
+// Output folders never mix or fake a result (engine/io/output_folder.h, engine/io/interrupt.h):
+// a second kneesim process writing into a folder in use is refused naming the first; a stale
+// lock of a dead process is taken over; a folder holding another command's results is refused;
+// SIGINT (to the whole process group, as a terminal sends it) and SIGTERM stop a wear run with
+// exit 130 / 143, its table renamed wear.partial.csv, no summary.json, no temporary file, no
+// lock and no Python traceback; a later run removes temporary files a killed run left; a full
+// disk (a small tmpfs, when this process may mount one) ends with exit 1 and only partial
+// names; compare refuses a material listed twice and study a negative thread count.
+#include <doctest/doctest.h>
+
+#include <sys/mount.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cstring>
+#include <csignal>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "tests/cli_wear/cli_helpers.h"
+
+namespace fs = std::filesystem;
+using namespace kneesim::test;
+
+namespace {
+
+// a wear run long enough to be interrupted (minutes): 3 mm elements, one cycle per update
+std::vector<std::string> long_wear(const fs::path& out) {
+  return {"wear", "--cycles", "5000", "--update-every", "1", "--set",
+          "implant.edge_length_mm=3", "--out", out.string(), "--no-report", "--no-depth-maps"};
+}
+
+// kneesim in a process group of its own (as a shell job), so a signal can go to the group
+pid_t start_group(const std::vector<std::string>& args, const fs::path& dir, const std::string& tag) {
+  const fs::path exe = find_kneesim();
+  const std::string out = (dir / (tag + ".stdout")).string();
+  const std::string err = (dir / (tag + ".stderr")).string();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::setpgid(0, 0);
+    const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(o, 1);
+    ::dup2(e, 2);
+    std::vector<std::string> all{exe.string()};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(exe.c_str(), argv.data());
+    ::_exit(127);
+  }
+  ::setpgid(pid, pid);
+  return pid;
+}
+
+bool wait_for(const fs::path& p, double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < end) {
+    if (fs::exists(p)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+int exit_status(pid_t pid) {
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+std::vector<std::string> names_in(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+  return out;
+}
+
+bool any_temporary(const fs::path& dir) {
+  for (const auto& n : names_in(dir)) {
+    if (n.find(".tmp") != std::string::npos) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("a folder in use is refused naming the process; signals stop a run cleanly") {
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  for (const int sig : {SIGTERM, SIGINT}) {
+    CAPTURE(sig);
+    const fs::path out = tmp.path / ("w" + std::to_string(sig));
+    const std::string tag = "sig" + std::to_string(sig);
+    const pid_t pid = start_group(long_wear(out), tmp.path, tag);
+    REQUIRE(wait_for(out / "wear.csv", 120.0));  // the first update is written
+
+    // a second process into the same folder: refused, naming the first
+    const Result second = run_kneesim({"run", "--cycles", "1", "--set", "implant.edge_length_mm=3",
+                                       "--out", out.string(), "--quiet"},
+                                      tmp.path, "second");
+    CHECK(second.exit_code == 2);
+    CHECK(second.err.find("is in use by another kneesim process (pid " + std::to_string(pid) +
+                          ": kneesim wear") != std::string::npos);
+
+    ::kill(sig == SIGINT ? -pid : pid, sig);  // SIGINT to the group, as a terminal sends it
+    const int code = exit_status(pid);
+    CHECK(code == 128 + sig);
+    const std::string err = slurp(tmp.path / (tag + ".stderr"));
+    INFO(err);
+    CHECK(err.find("Traceback") == std::string::npos);
+    CHECK(err.find("KeyboardInterrupt") == std::string::npos);
+    CHECK(fs::exists(out / "wear.partial.csv"));
+    CHECK(!fs::exists(out / "wear.csv"));
+    CHECK(!fs::exists(out / "summary.json"));
+    CHECK(!fs::exists(out / ".kneesim.lock"));
+    CHECK(!any_temporary(out));
+    // a resumed run continues in the same folder (same command) and completes
+    spit(out / "wear.csv.tmp.999999", "left by a killed run\n");
+    std::vector<std::string> resume = long_wear(out);
+    resume[2] = "3";  // fewer cycles: a new, short run of the same command
+    const Result again = run_kneesim(resume, tmp.path, "again");
+    INFO(again.err);
+    CHECK(again.exit_code == 0);
+    CHECK(fs::exists(out / "summary.json"));
+    CHECK(!fs::exists(out / "wear.partial.csv"));
+    CHECK(!fs::exists(out / "wear.csv.tmp.999999"));
+    CHECK(!fs::exists(out / ".kneesim.lock"));
+  }
+}
+
+TEST_CASE("a stale lock is taken over; another command's results are not mixed in") {
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  const fs::path out = tmp.path / "o";
+  fs::create_directories(out);
+  spit(out / ".kneesim.lock", "pid 999999: kneesim run, since 2026-01-01 00:00:00\n");
+  const std::vector<std::string> run = {"run", "--cycles", "1", "--set", "implant.edge_length_mm=3",
+                                        "--out", out.string(), "--quiet", "--no-plots",
+                                        "--no-report"};
+  const Result r = run_kneesim(run, tmp.path, "stale");
+  INFO(r.err);
+  CHECK(r.exit_code == 0);
+  CHECK(r.err.find("took over the lock of a kneesim process that is no longer running (pid "
+                   "999999") != std::string::npos);
+  CHECK(fs::exists(out / "summary.json"));
+  CHECK(!fs::exists(out / ".kneesim.lock"));
+
+  // wear into the folder of a run: refused, nothing of the run's removed
+  const Result w = run_kneesim({"wear", "--cycles", "2", "--update-every", "1", "--set",
+                                "implant.edge_length_mm=3", "--out", out.string(), "--quiet"},
+                               tmp.path, "other");
+  CHECK(w.exit_code == 2);
+  CHECK(w.err.find("holds the results of 'kneesim run'") != std::string::npos);
+  CHECK(fs::exists(out / "summary.json"));
+  CHECK(!fs::exists(out / "wear.csv"));
+  // the same command again is fine
+  CHECK(run_kneesim(run, tmp.path, "same").exit_code == 0);
+}
+
+TEST_CASE("compare refuses a material listed twice; study a negative thread count") {
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  const Result c = run_kneesim({"compare", "--materials", "uhmwpe,uhmwpe", "--out",
+                                (tmp.path / "c").string()}, tmp.path, "c");
+  CHECK(c.exit_code == 2);
+  CHECK(c.err.find("--materials lists 'uhmwpe' twice") != std::string::npos);
+  CHECK(!fs::exists(tmp.path / "c"));
+  const Result s = run_kneesim({"study", "--threads", "-1", "--out", (tmp.path / "s").string()},
+                               tmp.path, "s");
+  CHECK(s.exit_code == 2);
+  CHECK(s.err.find("--threads") != std::string::npos);
+}
+
+TEST_CASE("a full disk ends a wear run with exit 1 and only partial names") {
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  const fs::path disk = tmp.path / "disk";
+  fs::create_directories(disk);
+  // 300 kB: the checkpoint (about 120 kB, twice while it is replaced) and the first updates'
+  // rows fit, the later ones do not
+  if (::mount("tmpfs", disk.c_str(), "tmpfs", 0, "size=300k") != 0) {
+    MESSAGE("skipped: cannot mount a small tmpfs here (needs root): " << std::strerror(errno));
+    return;
+  }
+  struct Unmount {
+    fs::path p;
+    ~Unmount() { ::umount2(p.c_str(), MNT_DETACH); }
+  } unmount{disk};
+  const fs::path out = disk / "w";
+  const Result r = run_kneesim({"wear", "--cycles", "400", "--update-every", "1", "--set",
+                                "implant.edge_length_mm=3", "--out", out.string(), "--quiet",
+                                "--no-depth-maps"},
+                               tmp.path, "full");
+  INFO(r.err);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("No space left on device") != std::string::npos);
+  CHECK(count_lines(r.err) == 1);
+  CHECK(!fs::exists(out / "summary.json"));
+  CHECK(!fs::exists(out / "wear.csv"));
+  CHECK(fs::exists(out / "wear.partial.csv"));
+  CHECK(!any_temporary(out));
+  CHECK(!fs::exists(out / ".kneesim.lock"));
+}

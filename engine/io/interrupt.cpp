@@ -77,7 +77,12 @@ void write_all(const char* text) {
   }
 }
 
+pid_t g_main_pid = 0;
+
 extern "C" void on_signal(int sig) {
+  // a child between fork and exec (engine/io/plot.cpp blocks the signals there; this is the
+  // second guard) must not clean up its parent's files
+  if (::getpid() != g_main_pid) ::_exit(128 + sig);
   clean_up();
   write_all(sig == SIGINT ? "\nkneesim: interrupted (SIGINT); tables in progress are kept as "
                             "*.partial.*, no summary.json was written\n"
@@ -89,6 +94,7 @@ extern "C" void on_signal(int sig) {
 }  // namespace
 
 void install_interrupt_handlers() {
+  g_main_pid = ::getpid();
   struct sigaction sa;
   std::memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_signal;

@@ -155,10 +155,9 @@ void claim_folder(const fs::path& dir, const std::string& name) {
                        "'kneesim " + words + "'.");
     }
   }
-  if (!stale.empty()) {
-    std::fprintf(stderr, "note: %s: took over the lock of a kneesim process that is no longer "
-                 "running (%s)\n", name.c_str(), stale.c_str());
-  }
+  // a lock file left by a process that no longer runs (killed): taken over silently, its
+  // text replaced below (stderr keeps one sentence per outcome)
+  (void)stale;
   char when[64];
   const std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S", std::localtime(&now));

@@ -14,7 +14,7 @@ namespace kneesim::io {
 // creates `dir` if needed and checks that a file can be written in it; throws InputError
 // ("--out 'x' is an existing file, not a folder; ...") naming `flag` and the folder.
 // Then claims it for this process until it exits: DIR/.kneesim.lock (pid, command, start;
-// an flock, so the lock of a killed process is taken over) refuses a second kneesim process
+// an flock, so the lock of a killed process is taken over silently) refuses a second kneesim process
 // naming the first; DIR/.kneesim-command names the command whose results the folder holds,
 // and a different command is refused while the folder holds any (non-hidden) file; files a
 // killed run left in the middle of an atomic write (NAME.tmp.PID) are removed. MPI ranks other

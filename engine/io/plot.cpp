@@ -1,5 +1,6 @@
 #include "engine/io/plot.h"
 
+#include <pthread.h>
 #include <signal.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -39,17 +40,28 @@ pid_t spawn_python(const std::vector<std::string>& args, int socket_fd) {
   argv.push_back(const_cast<char*>(kPython));
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  // SIGINT and SIGTERM are blocked across fork, so kneesim's handler (engine/io/interrupt.h)
+  // never runs in the child; the parent receives a pending one when it unblocks
+  sigset_t block, old;
+  sigemptyset(&block);
+  sigaddset(&block, SIGINT);
+  sigaddset(&block, SIGTERM);
+  ::pthread_sigmask(SIG_BLOCK, &block, &old);
   const pid_t pid = ::fork();
   if (pid == 0) {
     if (socket_fd >= 0 && (::dup2(socket_fd, 0) < 0 || ::dup2(socket_fd, 3) < 0)) ::_exit(127);
     // a Ctrl-C reaches the whole process group: Python started with SIGINT ignored installs
     // no KeyboardInterrupt handler (no traceback); kneesim's own handler stops it with SIGTERM
-    struct sigaction ignore {};
+    struct sigaction ignore {}, deflt {};
     ignore.sa_handler = SIG_IGN;
+    deflt.sa_handler = SIG_DFL;
     ::sigaction(SIGINT, &ignore, nullptr);
+    ::sigaction(SIGTERM, &deflt, nullptr);
+    ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
     ::execve(kPython, argv.data(), envp.data());
     ::_exit(127);
   }
+  ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
   return pid;
 }
 

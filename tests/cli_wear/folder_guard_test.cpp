@@ -143,8 +143,7 @@ TEST_CASE("a stale lock is taken over; another command's results are not mixed i
   const Result r = run_kneesim(run, tmp.path, "stale");
   INFO(r.err);
   CHECK(r.exit_code == 0);
-  CHECK(r.err.find("took over the lock of a kneesim process that is no longer running (pid "
-                   "999999") != std::string::npos);
+  CHECK(r.err.empty());
   CHECK(fs::exists(out / "summary.json"));
   CHECK(!fs::exists(out / ".kneesim.lock"));
 

@@ -38,6 +38,9 @@ struct MaterialConfig {
   // the wear law "material_pressure": k_ref is wear_factor_mm3_per_Nmm, the factor at p_ref
   double wear_pressure_exponent = 0.0;        // n [-], either sign (UHMWPE's falls with p)
   double wear_reference_pressure_MPa = 10.0;  // p_ref [MPa]
+  // a [materials.<name>] table of a config: the properties it did not set and took from the
+  // built-in defaults (UHMWPE against CoCr), "key = value, ..."; said once when it is used
+  std::string defaults_taken;
   std::string wear_pressure_source;           // the direction's citation and the magnitude's
 };
 

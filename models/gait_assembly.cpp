@@ -55,7 +55,19 @@ loads::MeasuredLoadSpec measured_load_spec(const Config& c) {
 // kinematics file, the measured channels are merged in (sampled every 0.25 %); a measured
 // load table's rig channels replace the file's
 loads::Waveform make_gait(const Config& c, const loads::Waveform* measured_cycle) {
-  loads::Waveform gait = loads::load_waveform(resolve_path(c, c.gait_file));
+  const std::filesystem::path gait_path = resolve_path(c, c.gait_file);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(gait_path, ec)) {
+    throw InputError((c.file.empty() ? std::string("built-in config") : c.file.string()) +
+                     ": gait.file = \"" + c.gait_file + "\": " +
+                     (std::filesystem::is_directory(gait_path, ec) ? "'" + gait_path.string() +
+                                                                       "' is a folder"
+                                                                 : "no file '" +
+                                                                       gait_path.string() + "'") +
+                     "; allowed: a gait waveform table (CSV) or key-point file, relative to the "
+                     "config or with ${KNEESIM_SOURCE} / ${KNEESIM_DATA}.");
+  }
+  loads::Waveform gait = loads::load_waveform(gait_path);
   loads::WaveformConventions conv;
   conv.ap_sign = c.ap_sign;
   conv.ie_sign = c.ie_sign;

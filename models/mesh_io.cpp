@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <cstdlib>
+#include <sstream>
 #include <random>
 #include <stdexcept>
 #include <unordered_map>
@@ -148,10 +150,84 @@ void check_ply_header(const std::filesystem::path& file) {
   }
 }
 
+// what assimp reports in its own words for files that are not what their name says: a file
+// of another kind (an image, an archive, a PDF) under a mesh name, a binary STL whose size
+// disagrees with its triangle count (cut off, or a count that was not written), and an OBJ
+// face that names a vertex not defined: one sentence each, with the line for OBJ
+void check_file_kind(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(512, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  const struct {
+    const char* magic;
+    const char* kind;
+  } kinds[] = {{"\x89PNG", "a PNG image"},      {"\xFF\xD8\xFF", "a JPEG image"},
+               {"GIF8", "a GIF image"},         {"%PDF", "a PDF document"},
+               {"PK\x03\x04", "a ZIP archive"}, {"\x1F\x8B", "a gzip archive"}};
+  for (const auto& k : kinds) {
+    if (head.rfind(k.magic, 0) == 0) {
+      fail(file, std::string("is ") + k.kind + ", not a mesh; STL, OBJ and PLY are supported.");
+    }
+  }
+  std::string ext = file.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(file, ec);
+  if (ext == ".stl" && !ec) {
+    // ASCII STL starts with "solid" and has a "facet" soon after; anything else is binary
+    const bool ascii = head.rfind("solid", 0) == 0 && head.find("facet") != std::string::npos;
+    if (!ascii) {
+      if (size < 84) {
+        fail(file, "is too short for a binary STL (" + std::to_string(size) + " bytes; a "
+                   "binary STL has an 84-byte header with its triangle count).");
+      }
+      std::uint32_t n = 0;
+      std::memcpy(&n, head.data() + 80, 4);
+      const std::uintmax_t expected = 84 + 50 * static_cast<std::uintmax_t>(n);
+      if (size != expected) {
+        fail(file, "is not a complete binary STL: its header counts " + std::to_string(n) +
+                   " triangles, which take " + std::to_string(expected) + " bytes, but the "
+                   "file has " + std::to_string(size) + " bytes (cut off, or a wrong count).");
+      }
+    }
+  }
+  if (ext == ".obj") {
+    // OBJ indices are 1-based; negative ones count back from the last vertex defined
+    in.clear();
+    in.seekg(0);
+    long vertices = 0, line_no = 0;
+    std::string line;
+    while (std::getline(in, line)) {
+      ++line_no;
+      if (line.rfind("v ", 0) == 0 || line.rfind("v\t", 0) == 0) {
+        ++vertices;
+      } else if (line.rfind("f ", 0) == 0 || line.rfind("f\t", 0) == 0) {
+        std::istringstream words(line.substr(2));
+        std::string word;
+        while (words >> word) {
+          char* end = nullptr;
+          const long idx = std::strtol(word.c_str(), &end, 10);
+          if (end == word.c_str()) continue;  // assimp reports what it cannot parse
+          if (idx == 0 || idx > vertices || idx < -vertices) {
+            fail(file, "line " + std::to_string(line_no) + ": face index " + std::to_string(idx) +
+                       " names no vertex: " + std::to_string(vertices) + " vertices are defined "
+                       "above it (allowed: 1 to " + std::to_string(vertices) + ", or -1 to -" +
+                       std::to_string(vertices) + ").");
+          }
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& options) {
   std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) {
+    fail(file, "is a folder, not a mesh file; give an STL, OBJ or PLY file.");
+  }
   if (!std::filesystem::is_regular_file(file, ec)) fail(file, "mesh file not found.");
   double scale = 1.0;
   if (options.units == "mm") {
@@ -165,6 +241,7 @@ TriMesh load_mesh(const std::filesystem::path& file, const MeshImportOptions& op
   }
 
   check_ply_header(file);
+  check_file_kind(file);
   // read with assimp, check the faces, then triangulate and flatten the node hierarchy: the
   // post-processing of assimp 5.2 (Debian 12) aborts the process (ai_assert in
   // TriangulateProcess) on faces without indices, e.g. a PLY cut off before its face list

@@ -215,6 +215,12 @@ DiagnosisCase make_bor_case(MeasuredData data, const BorCaseOptions& options) {
     std::vector<int> all(rows.size());
     for (size_t i = 0; i < rows.size(); ++i) all[i] = static_cast<int>(i);
     const CalibrationSlope s = calibration_slope(c.measured, all, cal_load, ss_from);
+    if (s.rows.empty()) {
+      // every volume row at that load is at cycle 0 (or none is a volume): nothing to fit
+      throw InputError(c.measured.source + ": column cycles at the calibration load " +
+                       bor_load_label(s.load) + ": no volume_mm3 row has cycles > 0; allowed: "
+                       "at least two rows with cycles > 0 (cumulative volume against cycles).");
+    }
     if (!(s.slope > 0.0)) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "the volumes fall with cycles (slope %.3g mm^3 per 1000 "

@@ -41,8 +41,21 @@ int CsvTable::column(const std::string& name) const {
 int CsvTable::require(const std::string& name, const std::string& expected) const {
   const int c = column(name);
   if (c < 0) {
+    // a spreadsheet in a decimal-comma locale writes ';' between cells (and 0,5 for 0.5)
+    std::string separator;
+    for (const char* sep : {";", "\t", "|"}) {
+      for (const std::string& h : header) {
+        if (separator.empty() && h.find(sep) != std::string::npos) separator = sep;
+      }
+    }
+    const std::string hint =
+        separator.empty() ? std::string()
+                          : std::string(" (the header is separated by '") +
+                                (separator == "\t" ? "tab" : separator) + "', not ','; kneesim "
+                                "reads comma-separated values with a decimal point, e.g. "
+                                "0.5, not 0,5)";
     throw InputError(source + ": row 1 (header) has no column '" + name + "'; expected columns: " +
-                     expected + ".");
+                     expected + hint + ".");
   }
   return c;
 }

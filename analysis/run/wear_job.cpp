@@ -188,11 +188,11 @@ void check_wear_job(const WearJob& j) {
   }
   if (j.schedule.empty()) {
     if (j.update_every <= 0) {
-      throw InputError("--update-every = " + std::to_string(j.update_every) +
+      throw InputError(j.interval_flag + " = " + std::to_string(j.update_every) +
                        " is not allowed (a positive number of cycles per geometry update)");
     }
     if (j.update_every > j.cycles) {
-      throw InputError("--update-every = " + std::to_string(j.update_every) +
+      throw InputError(j.interval_flag + " = " + std::to_string(j.update_every) +
                        " is larger than the run (--cycles = " + std::to_string(j.cycles) +
                        "); allowed: 1 to " + std::to_string(j.cycles));
     }
@@ -208,11 +208,12 @@ void check_wear_job(const WearJob& j) {
   const long updates = count_updates(j, kMaxUpdates);
   if (updates > kMaxUpdates) {
     throw InputError("--cycles = " + std::to_string(j.cycles) + " with " +
-                     (j.schedule.empty() ? "--update-every = " + std::to_string(j.update_every)
+                     (j.schedule.empty() ? j.interval_flag + " = " + std::to_string(j.update_every)
                                          : std::string("this --schedule")) +
                      " needs more than " + std::to_string(kMaxUpdates) +
                      " geometry updates (each simulates a gait cycle and writes a depth map); "
-                     "allowed: at most " + std::to_string(kMaxUpdates) + ", e.g. --update-every " +
+                     "allowed: at most " + std::to_string(kMaxUpdates) + ", e.g. " +
+                     (j.schedule.empty() ? j.interval_flag : std::string("--update-every")) + " " +
                      std::to_string((j.cycles + kMaxUpdates - 1) / kMaxUpdates) + " or more");
   }
   const double k = j.config.material.wear_factor_mm3_per_Nmm;

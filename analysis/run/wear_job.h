@@ -24,6 +24,8 @@ struct WearJob {
   long cycles = 5'000'000;
   long update_every = 250'000;
   std::vector<long> schedule;     // overrides update_every when not empty
+  // the option that set update_every, named in messages ("--update-every", "--convergence")
+  std::string interval_flag = "--update-every";
   std::filesystem::path out;
   bool resume = false;
   bool allow_any_wear_factor = false;

@@ -260,9 +260,10 @@ void add_compare_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--cycles", args->cycles, "total gait cycles, 1 to 1e9")
       ->capture_default_str()
-      ->check(finite_range(1, 1e9));
+      ->check(whole_range(1, 1e9));
   cmd->add_option("--update-every", args->update_every, "cycles per geometry update")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(whole_range(1, 1e9));
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--set", args->sets, "override a config key (repeatable)");
   add_wear_law_options(cmd, args->wear_law, args->law_params);

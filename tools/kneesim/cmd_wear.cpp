@@ -45,6 +45,7 @@ void run_convergence(const WearArgs& a, const std::vector<models::Override>& ove
     job.config = models::load_config(a.config, overrides);
     job.cycles = a.cycles;
     job.update_every = every;
+    job.interval_flag = "--convergence";
     job.out = fs::path(a.out) / ("every_" + std::to_string(every));
     job.quiet = true;
     job.depth_maps = false;
@@ -143,13 +144,15 @@ void add_wear_command(CLI::App& app) {
   cmd->add_option("config", args->config, "TOML config file")->check(CLI::ExistingFile);
   cmd->add_option("--cycles", args->cycles, "total gait cycles, 1 to 1e9")
       ->capture_default_str()
-      ->check(finite_range(1, 1e9));
+      ->check(whole_range(1, 1e9));
   cmd->add_option("--update-every", args->update_every, "cycles per geometry update")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(whole_range(1, 1e9));
   cmd->add_option("--schedule", args->schedule,
                   "cycles per update as a list, the last repeated (e.g. 50000,100000,250000); "
                   "overrides --update-every")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(whole_range(1, 1e9));
   cmd->add_option("--material", args->material,
                   "insert material from models/materials.toml (uhmwpe, peek, cfr-peek, ...) or "
                   "a [materials.<name>] table of the config");
@@ -160,7 +163,8 @@ void add_wear_command(CLI::App& app) {
                   "update-interval convergence study: run the prediction once per listed "
                   "interval (e.g. 1000000,500000,250000,100000,50000) into DIR/every_<N>/ and "
                   "write DIR/convergence.csv and .md (changes against the finest)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(whole_range(1, 1e9));
   add_wear_law_options(cmd, args->wear_law, args->law_params);
   cmd->add_flag("--allow-any-wear-factor", args->allow_any_wear_factor,
                 "accept wear factors outside 1e-12..1e-6 mm^3/(N mm)");

@@ -30,6 +30,37 @@ inline CLI::Validator finite_range(double lo, double hi) {
       "[" + allowed + "]");
 }
 
+// an option's value must be a whole number in [lo, hi], written as digits: "1e3" and "2.5"
+// are refused naming the range (CLI11 would say only "Could not convert"), with the digits
+// to write when the value is whole
+inline CLI::Validator whole_range(double lo, double hi) {
+  char range[80];
+  std::snprintf(range, sizeof range, "%.0f to %.0f", lo, hi);
+  const std::string allowed = range;
+  return CLI::Validator(
+      [lo, hi, allowed](std::string& text) -> std::string {
+        const size_t first = !text.empty() && (text[0] == '+' || text[0] == '-') ? 1 : 0;
+        const bool digits = text.size() > first &&
+                            text.find_first_not_of("0123456789", first) == std::string::npos;
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        const bool number = end != text.c_str() && *end == '\0' && std::isfinite(v);
+        if (digits) {
+          if (v >= lo && v <= hi) return std::string();
+          return "value '" + text + "' is not in the allowed range " + allowed;
+        }
+        std::string hint;
+        if (number && v == std::floor(v) && std::abs(v) < 1e15) {
+          char buf[64];
+          std::snprintf(buf, sizeof buf, " (write %.0f)", v);
+          hint = buf;
+        }
+        return "value '" + text + "' is not a whole number" + hint + "; allowed: a whole number " +
+               allowed;
+      },
+      "[" + allowed + "]");
+}
+
 // --wear-law NAME and --law-param name=value (repeatable, comma-separated): shorthands for
 // --set wear.law=NAME and --set wear.<name>=value (wear/wear_law.h wear_law_overrides)
 inline void add_wear_law_options(CLI::App* cmd, std::string& law,

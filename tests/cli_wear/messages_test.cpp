@@ -100,8 +100,9 @@ TEST_CASE("whole-number options say the range; --convergence names itself") {
 TEST_CASE("tables, gait file and user materials") {
   REQUIRE(!find_kneesim().empty());
   TempDir tmp;
-  // a spreadsheet in a decimal-comma locale
-  spit(tmp.path / "semi.csv", "load_N;cycles;volume_mm3\n225;0;0\n225;50000;0,5\n");
+  // a spreadsheet that writes ';' between cells (whole numbers here: a decimal comma in a row
+  // is reported as that row's field count, without the separator)
+  spit(tmp.path / "semi.csv", "load_N;cycles;volume_mm3\n225;0;0\n225;50000;1\n");
   refused(run_kneesim({"diagnose", "bor", "--measured", (tmp.path / "semi.csv").string(), "--out",
                        (tmp.path / "d1").string()}, tmp.path, "semi"),
           {"semi.csv: row 1 (header) has no column 'load_N'", "separated by ';', not ','"});

@@ -175,8 +175,9 @@ void check_file_kind(const std::filesystem::path& file) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(file, ec);
   if (ext == ".stl" && !ec) {
-    // ASCII STL starts with "solid" and has a "facet" soon after; anything else is binary
-    const bool ascii = head.rfind("solid", 0) == 0 && head.find("facet") != std::string::npos;
+    // ASCII STL starts with "solid" and is text; a binary one (which may also start with
+    // "solid") has a zero byte by offset 83, the high byte of its triangle count
+    const bool ascii = head.rfind("solid", 0) == 0 && head.find('\0') == std::string::npos;
     if (!ascii) {
       if (size < 84) {
         fail(file, "is too short for a binary STL (" + std::to_string(size) + " bytes; a "

@@ -95,7 +95,12 @@ void run(const CompareArgs& a) {
     }
   }
   for (const fs::path& d : others) {
-    if (run::clear_wear_outputs(d) && fs::is_empty(d)) fs::remove(d);
+    // the folder's command marker (engine/io/output_folder.h) is part of its results
+    if (run::clear_wear_outputs(d)) {
+      std::error_code ec;
+      fs::remove(d / ".kneesim-command", ec);
+      if (fs::is_empty(d)) fs::remove(d);
+    }
   }
   // one interpreter for the materials' plots and the comparison's, started now: it loads
   // matplotlib while the simulations run and plots each material as it finishes

@@ -62,15 +62,17 @@ struct Result {
   double seconds = 0.0;    // wall time
 };
 
-// starts kneesim with the arguments in the background, stdout and stderr into files of `dir`
+// starts kneesim with the arguments in the background, stdout and stderr into files of `dir`;
+// own_group: in a process group of its own (as a shell job), so a signal can go to the group
 inline pid_t start_kneesim(const std::vector<std::string>& args, const fs::path& dir,
-                           const std::string& tag) {
+                           const std::string& tag, bool own_group = false) {
   const fs::path exe = find_kneesim();
   if (exe.empty()) return -1;
   const std::string out = (dir / (tag + ".stdout")).string();
   const std::string err = (dir / (tag + ".stderr")).string();
   const pid_t pid = ::fork();
   if (pid == 0) {
+    if (own_group) ::setpgid(0, 0);
     const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     ::dup2(o, 1);
@@ -83,6 +85,7 @@ inline pid_t start_kneesim(const std::vector<std::string>& args, const fs::path&
     ::execv(exe.c_str(), argv.data());
     ::_exit(127);
   }
+  if (own_group && pid > 0) ::setpgid(pid, pid);
   return pid;
 }
 

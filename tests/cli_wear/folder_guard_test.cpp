@@ -34,26 +34,7 @@ std::vector<std::string> long_wear(const fs::path& out) {
 
 // kneesim in a process group of its own (as a shell job), so a signal can go to the group
 pid_t start_group(const std::vector<std::string>& args, const fs::path& dir, const std::string& tag) {
-  const fs::path exe = find_kneesim();
-  const std::string out = (dir / (tag + ".stdout")).string();
-  const std::string err = (dir / (tag + ".stderr")).string();
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::setpgid(0, 0);
-    const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(o, 1);
-    ::dup2(e, 2);
-    std::vector<std::string> all{exe.string()};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ::execv(exe.c_str(), argv.data());
-    ::_exit(127);
-  }
-  ::setpgid(pid, pid);
-  return pid;
+  return start_kneesim(args, dir, tag, /*own_group=*/true);
 }
 
 bool wait_for(const fs::path& p, double seconds) {

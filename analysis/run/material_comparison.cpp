@@ -29,10 +29,10 @@ double num(const nlohmann::json& j, const char* key) {
   return j.contains(key) ? j[key].get<double>() : std::nan("");
 }
 
-// "1.23" or "not found (why)"
+// "1.23", "1.23 (volume jumps by ... between ratios a and b ...)" or "not found (why)"
 std::string ratio_text(const BreakEven& b) {
-  if (std::isfinite(b.ratio)) return fmt("%.3g", b.ratio);
-  return "not found (" + b.note + ")";
+  if (!std::isfinite(b.ratio)) return "not found (" + b.note + ")";
+  return fmt("%.3g", b.ratio) + (b.note.empty() ? "" : " (" + b.note + ")");
 }
 
 }  // namespace
@@ -284,8 +284,20 @@ nlohmann::json break_even_json(const std::vector<MaterialBreakEven>& break_evens
   j["reference_volume_mm3"] = reference_result["volume_mm3"];
   j["reference_max_depth_mm"] = reference_result["max_depth_mm"];
   j["cycles"] = reference_result["cycles"];
-  auto ratio_or_null = [](const BreakEven& b) {
-    return std::isfinite(b.ratio) ? nlohmann::json(b.ratio) : nlohmann::json(nullptr);
+  auto number_or_null = [](double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
+  auto ratio_or_null = [&number_or_null](const BreakEven& b) { return number_or_null(b.ratio); };
+  // the bracket of a solve: its ends and their results (null where not known), whether the
+  // result jumps across the goal inside it and by how much
+  auto add_bracket = [&number_or_null](nlohmann::json& m, const std::string& prefix,
+                                       const BreakEven& b) {
+    m[prefix + "_converged"] = b.converged;
+    m[prefix + "_ratio_low"] = b.lo > 0.0 ? nlohmann::json(b.lo) : nlohmann::json(nullptr);
+    m[prefix + "_ratio_high"] = number_or_null(b.hi);
+    m[prefix + "_result_low"] = b.lo > 0.0 ? nlohmann::json(b.result_lo) : nlohmann::json(nullptr);
+    m[prefix + "_result_high"] = number_or_null(b.result_hi);
+    m[prefix + "_jump_pct"] = number_or_null(jump_percent(b));
   };
   for (const MaterialBreakEven& b : break_evens) {
     j["order"].push_back(b.material);
@@ -298,6 +310,8 @@ nlohmann::json break_even_json(const std::vector<MaterialBreakEven>& break_evens
     m["max_depth_ratio"] = ratio_or_null(b.max_depth);
     m["max_depth_runs"] = b.max_depth.runs;
     m["max_depth_note"] = b.max_depth.note;
+    add_bracket(m, "volume", b.volume);
+    add_bracket(m, "max_depth", b.max_depth);
     for (const RatioRun& r : b.runs) {
       m["runs"].push_back({{"ratio", r.ratio},
                            {"complete", r.complete},

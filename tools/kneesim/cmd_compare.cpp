@@ -1,6 +1,8 @@
 // `kneesim compare`: the same wear simulation for several insert materials, run concurrently
 // (one material per core), with a comparison table, a markdown report and plots.
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <mutex>
@@ -206,8 +208,18 @@ void run(const CompareArgs& a) {
                                              results[ref - a.materials.begin()], bands);
     io::Table be;
     be.label_name = "material";
+    // a break-even found as a jump of the result across the goal: the bracket's ends (both
+    // columns equal the ratio otherwise; NaN where not found)
     be.columns = {"break_even_volume_ratio", "break_even_max_depth_ratio", "own_ratio",
-                  "own_factor_independent", "volume_runs", "max_depth_runs"};
+                  "own_factor_independent", "volume_runs", "max_depth_runs",
+                  "volume_ratio_low", "volume_ratio_high", "volume_jump_pct",
+                  "max_depth_ratio_low", "max_depth_ratio_high", "max_depth_jump_pct"};
+    const auto bracket = [](const run::BreakEven& e) -> std::array<double, 3> {
+      const double nan = std::nan("");
+      if (!std::isfinite(e.ratio)) return {nan, nan, nan};
+      if (!e.jump && e.note.empty()) return {e.ratio, e.ratio, 0.0};
+      return {e.lo, e.hi, run::jump_percent(e)};
+    };
     io::Table runs;
     runs.label_name = "material";
     runs.columns = {"ratio", "wear_factor_mm3_per_Nmm", "complete", "volume_mm3", "max_depth_mm",
@@ -215,8 +227,10 @@ void run(const CompareArgs& a) {
     const double k_ref = jobs[ref - a.materials.begin()].config.material.wear_factor_mm3_per_Nmm;
     for (const run::MaterialBreakEven& b : break_evens) {
       be.label_column.push_back(b.material);
+      const std::array<double, 3> v = bracket(b.volume), d = bracket(b.max_depth);
       be.add_row({b.volume.ratio, b.max_depth.ratio, b.own_ratio, b.own_independent ? 1.0 : 0.0,
-                  static_cast<double>(b.volume.runs), static_cast<double>(b.max_depth.runs)});
+                  static_cast<double>(b.volume.runs), static_cast<double>(b.max_depth.runs),
+                  v[0], v[1], v[2], d[0], d[1], d[2]});
       for (const run::RatioRun& r : b.runs) {
         runs.label_column.push_back(b.material);
         runs.add_row({r.ratio, r.ratio * k_ref, r.complete ? 1.0 : 0.0, r.volume_mm3,

@@ -15,6 +15,16 @@ X_LO, X_HI = 1e-3, 1e3
 BAND_COLOURS = ["#4c72b0", "#dd8452", "#55a868", "#c44e52", "#8172b3", "#937860"]
 
 
+def jump_text(m, target):
+    """' (jumps by X % between a and b)' when the solve found the break-even as a jump of the
+    result across the reference's inside a bracket narrower than its tolerance"""
+    pct = m.get(f"{target}_jump_pct")
+    if pct is None:
+        return ""
+    return (f" (jumps by {pct:.2g} % between {m[target + '_ratio_low']:.5g} and "
+            f"{m[target + '_ratio_high']:.5g})")
+
+
 def main():
     import matplotlib
     matplotlib.use("Agg")
@@ -51,8 +61,10 @@ def main():
                         color="crimson")
         ax.axhline(v_ref, color="0.4", ls="--", lw=1,
                    label=f"{ref}: {v_ref:.1f} mm³ after {mc:g} Mc")
-        lines = [(m["volume_ratio"], "-", "tab:green", "break-even, equal volume"),
-                 (m["max_depth_ratio"], ":", "tab:green", "break-even, equal max depth")]
+        lines = [(m["volume_ratio"], "-", "tab:green", "break-even, equal volume"
+                  + jump_text(m, "volume")),
+                 (m["max_depth_ratio"], ":", "tab:green", "break-even, equal max depth"
+                  + jump_text(m, "max_depth"))]
         own = m["own_ratio"]
         own_label = (f"materials study's implied ratio {own:.3g} (back-calculated from its "
                      "volumes: not independent)" if not m["own_factor_independent"]

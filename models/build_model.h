@@ -11,6 +11,7 @@
 #include "engine/stable_step.h"
 #include "models/config.h"
 #include "models/generic_tkr.h"
+#include "models/hex_mesh.h"
 #include "models/tri_mesh.h"
 
 namespace kneesim::models {
@@ -21,6 +22,16 @@ struct Implant {
   std::vector<int> articular_to_insert; // insert triangle of each articular element
   std::vector<int> articular_vertex_to_insert;  // insert vertex of each articular vertex
   double insert_volume = 0.0;           // enclosed volume [m^3] (0 for an open mesh)
+};
+
+// the deformable insert's mesh as attach_deformable_insert made it
+struct DeformableMeshReport {
+  double element_size_x = 0.0, element_size_z = 0.0;  // refined spacing [m]
+  int layers = 0;
+  double grading = 0.0;              // top / bottom layer thickness [-]
+  int elements = 0;
+  double patch_width_x = 0.0, patch_width_z = 0.0;  // narrowest rigid patches (10th pct) [m]
+  double layer_thickness = 0.0;      // median thickness under the rigid cycle's contact [m]
 };
 
 struct BuiltModel {
@@ -34,6 +45,11 @@ struct BuiltModel {
   double damping_ratio = 0.0;           // contact damping ratio [-]
   double dt_safety = 0.8;               // fraction of the stability limit [-]
   std::string geometry_key;             // the config keys that shaped implant, elements, fields
+  DeformableMeshReport deformable_mesh;  // the deformable insert's mesh as made (if any)
+  // deformable insert with refine = "contact": the refined zone (T frame) and, per top-surface
+  // contact node (model.insert_contact order), 1 when the node lies in it; empty otherwise
+  std::vector<Interval> refined_x, refined_z;
+  std::vector<unsigned char> refined_contact_node;
 };
 
 // builds everything; throws InputError for bad input (files named). With `same_geometry` (a

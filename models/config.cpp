@@ -444,12 +444,22 @@ Registry make_registry(Config& c) {
 
   r.choice("insert", c.insert_kind, {"rigid", "deformable"},
     "rigid insert with elastic-foundation contact, or deformable hex8 solid");
-  r.number("deformable.element_size_mm", c.deformable_element_size_mm, 0.2, 10.0,
-    "deformable insert: grid spacing over the footprint");
-  r.integer("deformable.layers", c.deformable_layers, 1, 20,
-    "deformable insert: elements through the thickness");
-  r.number("deformable.grading", c.deformable_grading, 0.05, 20.0,
-    "deformable insert: top / bottom layer thickness ratio");
+  r.number("deformable.element_size_mm", c.deformable_element_size_mm, 0.05, 10.0,
+    "deformable insert: grid spacing over the footprint (in the refined zone); with elements_across_contact > 0 its upper bound");
+  r.integer("deformable.elements_across_contact", c.deformable_elements_across_contact, 0, 100,
+    "deformable insert: refined spacing per direction = the narrowest contact patch width of a rigid cycle / this (0: element_size_mm)");
+  r.number("deformable.min_element_size_mm", c.deformable_min_element_size_mm, 0.02, 10.0,
+    "deformable insert: lower bound of the spacing set by elements_across_contact");
+  r.integer("deformable.layers", c.deformable_layers, 0, 40,
+    "deformable insert: elements through the thickness (0: top layer as thick as the finest spacing, the fewest layers growing by at most 1.5 per layer)");
+  r.number("deformable.grading", c.deformable_grading, 0.01, 20.0,
+    "deformable insert: top / bottom layer thickness ratio (layers > 0)");
+  r.choice("deformable.refine", c.deformable_refine, {"contact", "none"},
+    "deformable insert: footprint grid refined where a rigid gait cycle's loaded contact occurs and growing away from it (contact), or one spacing everywhere (none)");
+  r.number("deformable.outer_element_size_mm", c.deformable_outer_element_size_mm, 0.2, 10.0,
+    "deformable insert with refine = contact: grid spacing away from the contact zone");
+  r.number("deformable.refine_margin_mm", c.deformable_refine_margin_mm, 0.0, 20.0,
+    "deformable insert with refine = contact: margin around the rigid cycle's contact footprint");
   r.number("deformable.dt_us", c.deformable_dt_us, 0.0, 1000.0,
     "deformable insert: time step reached by mass scaling (0: none)");
   r.number("deformable.damping_per_s", c.deformable_damping_per_s, 0.0, 1e5,

@@ -178,9 +178,20 @@ struct Config {
   // solid meshed from the insert, engine/insert_solid.h)
   std::string insert_kind = "rigid";
   // [deformable]: the deformable insert's mesh, time step and material model
-  double deformable_element_size_mm = 1.0;  // grid spacing over the footprint [mm]
-  int deformable_layers = 4;                // elements through the thickness
-  double deformable_grading = 0.5;          // top / bottom layer thickness [-]
+  // the mesh (models/deformable_insert.h says how the keys combine)
+  double deformable_element_size_mm = 1.0;  // grid spacing over the footprint [mm] (in the
+                                            // refined zone; with elements_across_contact its
+                                            // upper bound)
+  int deformable_elements_across_contact = 0;  // spacing = patch width / this; 0: element_size
+  double deformable_min_element_size_mm = 0.1; // lower bound of that spacing [mm]
+  int deformable_layers = 4;                // elements through the thickness (0: from the
+                                            // refined spacing, growing by 1.5 per layer)
+  double deformable_grading = 0.5;          // top / bottom layer thickness [-] (layers > 0)
+  // refinement of the footprint grid where the gait cycle's contact occurs
+  // (models/contact_footprint.h): "contact" | "none" (uniform)
+  std::string deformable_refine = "none";
+  double deformable_outer_element_size_mm = 3.0;  // spacing away from the contact zone [mm]
+  double deformable_refine_margin_mm = 3.0;  // zone = rigid cycle's contact + this margin [mm]
   double deformable_dt_us = 20.0;           // time step reached by mass scaling [us]; 0: none
   double deformable_damping_per_s = 1000.0; // mass-proportional damping [1/s]
   std::string deformable_material = "elastoplastic";  // "elastoplastic" (J2) | "elastic"

@@ -4,11 +4,45 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/contact_law.h"
 #include "engine/errors.h"
 #include "engine/solid/solid_build.h"
+#include "models/contact_footprint.h"
 #include "models/hex_mesh.h"
 
 namespace kneesim::models {
+namespace {
+
+// growth of the footprint spacing per element away from the refined zone: a gentle grading
+// (a jump in element size reflects stress waves and stiffens the transition)
+constexpr double kRefinedGrowth = 1.3;
+// growth of the layer thickness per layer down from the surface (layers = 0)
+constexpr double kLayerGrowth = 1.5;
+// the narrowest patches: this percentile of the loaded frames' patch widths
+constexpr double kPatchPercentile = 0.1;
+
+}  // namespace
+
+std::pair<int, double> find_graded_layers(double height, double top, double growth) {
+  if (!(height > 0.0) || !(top > 0.0) || top >= height) return {1, 1.0};
+  // the fewest layers whose thicknesses, top, top * growth, ..., reach the height
+  const int layers = std::clamp(
+      static_cast<int>(std::ceil(std::log1p(height * (growth - 1.0) / top) / std::log(growth))),
+      2, 40);
+  // the ratio r (each layer r times the one below) that makes the top layer exactly `top`:
+  // top(r) = height r^(L-1) (1 - r) / (1 - r^L) grows with r; bisection
+  auto top_of = [&](double r) {
+    return r >= 1.0 ? height / layers
+                    : height * std::pow(r, layers - 1) * (1.0 - r) / (1.0 - std::pow(r, layers));
+  };
+  if (top_of(1.0) <= top) return {layers, 1.0};
+  double a = 1e-6, b = 1.0;
+  for (int i = 0; i < 100; ++i) {
+    const double r = 0.5 * (a + b);
+    (top_of(r) < top ? a : b) = r;
+  }
+  return {layers, std::pow(0.5 * (a + b), layers - 1)};
+}
 
 engine::solid::SolidMaterial make_insert_solid_material(const Config& c) {
   engine::solid::SolidMaterial m;
@@ -35,6 +69,54 @@ void attach_deformable_insert(const Config& c, BuiltModel& built) {
   options.element_size = c.deformable_element_size_mm * 1e-3;
   options.layers = c.deformable_layers;
   options.grading = c.deformable_grading;
+  DeformableMeshReport& report = built.deformable_mesh;
+  report = {};
+  const bool adaptive = c.deformable_elements_across_contact > 0;
+  const bool zone = c.deformable_refine == "contact";
+  if (adaptive || zone || c.deformable_layers == 0) {
+    // the cycle's contact, found with the law as specified (not the config's calibrated law),
+    // so the mesh is the same whatever rigid law the config names
+    const double k_specified = engine::foundation_modulus(c.material.elastic_modulus_MPa * 1e6,
+                                                          c.material.poisson);
+    ContactFootprint f;
+    try {
+      f = find_contact_footprint(m, k_specified, c.dt_safety, c.deformable_refine_margin_mm * 1e-3);
+    } catch (const std::runtime_error& e) {
+      throw InputError(where + ": the deformable insert's mesh follows the contact of a rigid "
+                       "cycle (deformable.refine, elements_across_contact, layers = 0), and " +
+                       e.what() + "; give deformable.refine = \"none\", "
+                       "elements_across_contact = 0 and layers > 0 for a mesh of fixed size");
+    }
+    report.patch_width_x = find_percentile(f.width_x, kPatchPercentile);
+    report.patch_width_z = find_percentile(f.width_z, kPatchPercentile);
+    if (adaptive) {
+      const double lo = c.deformable_min_element_size_mm * 1e-3, hi = options.element_size;
+      const double n = c.deformable_elements_across_contact;
+      options.element_size = std::clamp(report.patch_width_x / n, std::min(lo, hi), hi);
+      options.element_size_z = std::clamp(report.patch_width_z / n, std::min(lo, hi), hi);
+    }
+    if (zone) {
+      options.outer_element_size = c.deformable_outer_element_size_mm * 1e-3;
+      options.growth = kRefinedGrowth;
+      options.refine_x = f.x;
+      options.refine_z = f.z;
+      built.refined_x = f.x;
+      built.refined_z = f.z;
+    }
+    if (c.deformable_layers == 0) {
+      const double top = std::min(options.element_size,
+                                  options.element_size_z > 0.0 ? options.element_size_z
+                                                               : options.element_size);
+      const auto [layers, grading] = find_graded_layers(f.layer_thickness, top, kLayerGrowth);
+      options.layers = layers;
+      options.grading = grading;
+    }
+    report.layer_thickness = f.layer_thickness;
+  }
+  report.element_size_x = options.element_size;
+  report.element_size_z = options.element_size_z > 0.0 ? options.element_size_z : options.element_size;
+  report.layers = options.layers;
+  report.grading = options.grading;
   HexMesh mesh;
   try {
     mesh = make_insert_hex_mesh(built.implant.insert, 0.0, options);
@@ -61,6 +143,21 @@ void attach_deformable_insert(const Config& c, BuiltModel& built) {
   m.insert_contact = engine::solid::make_surface_contact(
       m.insert_solid, mesh.top_faces, mesh.top_face_element, friction,
       c.friction_regularization_mm_per_s * 1e-3);
+  built.refined_contact_node.clear();
+  report.elements = static_cast<int>(mesh.elements.size());
+  if (!built.refined_x.empty()) {
+    auto inside = [](const std::vector<Interval>& zone, double v) {
+      for (const Interval& z : zone) {
+        if (v >= z.lo && v <= z.hi) return true;
+      }
+      return false;
+    };
+    for (int node : m.insert_contact.nodes) {
+      const Eigen::Vector3d& x = mesh.nodes[node];
+      built.refined_contact_node.push_back(inside(built.refined_x, x.x()) &&
+                                           inside(built.refined_z, x.z()));
+    }
+  }
   m.insert_base_nodes = mesh.base_nodes;
   std::sort(m.insert_base_nodes.begin(), m.insert_base_nodes.end());
   m.insert_top_faces = mesh.top_faces;

@@ -18,11 +18,27 @@
 
 namespace kneesim::models {
 
+// the layers through a column of `height` [m] whose top layer is `top` [m] thick: the fewest
+// layers that reach the height when each is `growth` times the one above, with the growth then
+// lowered (a geometric series still) so that the top layer is exactly `top`: {layers, grading}
+// for InsertMeshOptions (grading = top / bottom thickness); {1, 1} when top >= height
+std::pair<int, double> find_graded_layers(double height, double top, double growth);
+
 // the solid material of the config's insert material (E, nu, density, yield from [material];
 // hardening and model from [deformable])
 engine::solid::SolidMaterial make_insert_solid_material(const Config& config);
 
 // builds the deformable insert into built.model (mesh, contact, base nodes), sets the time step
+// and reports the mesh it made (built.deformable_mesh). The mesh, from the [deformable] keys:
+//  - refine = "contact": the footprint grid is refined where a rigid cycle's loaded contact
+//    occurs (plus refine_margin_mm) and grows by 1.3 per element to outer_element_size_mm
+//    away from it (models/contact_footprint.h); "none": one spacing everywhere;
+//  - the refined spacing is element_size_mm, or with elements_across_contact = n > 0 the
+//    narrowest patch width of that rigid cycle over n per direction (AP and ML apart: a line
+//    contact is refined across the line), within [min_element_size_mm, element_size_mm];
+//  - layers = 0: the top layer as thick as the finer refined spacing, each layer below 1.5
+//    times thicker down to the base at the contact zone's median thickness; layers > 0: that
+//    many, graded by `grading`.
 // to the smaller of the rigid one and the solid's, and lifts the femur to first touch (the
 // rigid law's static overlap removed); throws InputError for bad input (mesh options, an
 // element inverted at the start, a material out of range)

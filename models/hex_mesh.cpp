@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "engine/errors.h"
@@ -151,6 +152,47 @@ std::vector<double> make_graded_lines(double a, double b, double centre, double 
   return lines;
 }
 
+std::vector<double> make_refined_lines(double a, double b, const std::vector<Interval>& zone,
+                                       double fine, double coarse, double growth) {
+  if (!(b > a) || !(fine > 0.0) || !(coarse >= fine) || !(growth >= 1.0)) {
+    throw std::invalid_argument("make_refined_lines: needs a < b, 0 < fine <= coarse, growth >= 1");
+  }
+  if (zone.empty() || coarse == fine) {
+    // the uniform grid (i * dx from a, as the insert mesher always placed it)
+    const int n = std::max(1, static_cast<int>(std::lround((b - a) / coarse)));
+    const double d = (b - a) / n;
+    std::vector<double> lines(n + 1);
+    for (int i = 0; i <= n; ++i) lines[i] = a + i * d;
+    return lines;
+  }
+  // the wanted spacing at v: fine inside the zone, growing with the distance from it
+  auto spacing = [&](double v) {
+    double d = INFINITY;
+    for (const Interval& z : zone) d = std::min(d, std::max({0.0, z.lo - v, v - z.hi}));
+    return std::isfinite(d) ? std::min(coarse, fine + (growth - 1.0) * d) : coarse;
+  };
+  // cumulative cell count N(v) = int_a^v dv / s(v) on a sampling grid of a tenth of `fine`
+  // (trapezoids; s is piecewise linear, so this is accurate to a fraction of a cell)
+  const int samples = std::max(2, static_cast<int>(std::ceil((b - a) / (0.1 * fine))) + 1);
+  std::vector<double> v(samples), count(samples, 0.0);
+  for (int i = 0; i < samples; ++i) v[i] = a + (b - a) * i / (samples - 1);
+  for (int i = 1; i < samples; ++i) {
+    count[i] = count[i - 1] + 0.5 * (v[i] - v[i - 1]) * (1.0 / spacing(v[i - 1]) + 1.0 / spacing(v[i]));
+  }
+  const int cells = std::max(1, static_cast<int>(std::lround(count.back())));
+  std::vector<double> lines(cells + 1);
+  lines[0] = a;
+  lines[cells] = b;
+  int j = 1;
+  for (int c = 1; c < cells; ++c) {
+    const double target = count.back() * c / cells;
+    while (count[j] < target) ++j;
+    const double t = (target - count[j - 1]) / (count[j] - count[j - 1]);
+    lines[c] = v[j - 1] + t * (v[j] - v[j - 1]);
+  }
+  return lines;
+}
+
 HexMesh make_insert_hex_mesh(const TriMesh& insert, double base_y, const InsertMeshOptions& o) {
   if (!(o.element_size > 0.0)) {
     throw InputError("insert hex mesh: element size " + mm(o.element_size) +
@@ -175,16 +217,26 @@ HexMesh make_insert_hex_mesh(const TriMesh& insert, double base_y, const InsertM
   const double inset = 1e-7 * std::max(hi.x() - lo.x(), hi.y() - lo.y());
   lo.array() += inset;
   hi.array() -= inset;
-  const int nx = std::max(1, static_cast<int>(std::lround((hi.x() - lo.x()) / o.element_size)));
-  const int nz = std::max(1, static_cast<int>(std::lround((hi.y() - lo.y()) / o.element_size)));
-  const double dx = (hi.x() - lo.x()) / nx, dz = (hi.y() - lo.y()) / nz;
-  const TopSurfaceRays rays(insert, lo, hi, o.element_size);
+  const double size_z = o.element_size_z > 0.0 ? o.element_size_z : o.element_size;
+  const bool refined = o.outer_element_size > std::max(o.element_size, size_z) &&
+                       !o.refine_x.empty() && !o.refine_z.empty();
+  if (refined && !(o.growth >= 1.0)) {
+    throw InputError("insert hex mesh: growth " + std::to_string(o.growth) +
+                     " is out of range (must be >= 1)");
+  }
+  const double outer = o.outer_element_size;
+  const std::vector<double> xs = make_refined_lines(lo.x(), hi.x(), refined ? o.refine_x : std::vector<Interval>{},
+                                                    o.element_size, refined ? outer : o.element_size, o.growth);
+  const std::vector<double> zs = make_refined_lines(lo.y(), hi.y(), refined ? o.refine_z : std::vector<Interval>{},
+                                                    size_z, refined ? outer : size_z, o.growth);
+  const int nx = static_cast<int>(xs.size()) - 1, nz = static_cast<int>(zs.size()) - 1;
+  const TopSurfaceRays rays(insert, lo, hi, std::max(std::min(o.element_size, size_z), 2e-4));
 
   // heights at the grid points
   std::vector<double> top(static_cast<size_t>(nx + 1) * (nz + 1));
   auto at = [nx](int i, int k) { return static_cast<size_t>(k) * (nx + 1) + i; };
   for (int k = 0; k <= nz; ++k)
-    for (int i = 0; i <= nx; ++i) top[at(i, k)] = rays.top(lo.x() + i * dx, lo.y() + k * dz);
+    for (int i = 0; i <= nx; ++i) top[at(i, k)] = rays.top(xs[i], zs[k]);
 
   // cells with all four corners on the insert
   std::vector<unsigned char> cell(static_cast<size_t>(nx) * nz, 0);
@@ -207,13 +259,13 @@ HexMesh make_insert_hex_mesh(const TriMesh& insert, double base_y, const InsertM
       if (column[p] < 0) continue;
       const double h = top[p] - base_y;
       if (!(h > 0.0)) {
-        throw InputError("insert hex mesh: the insert's top at x = " + mm(lo.x() + i * dx) +
-                         " mm, z = " + mm(lo.y() + k * dz) + " mm is " + mm(h) +
+        throw InputError("insert hex mesh: the insert's top at x = " + mm(xs[i]) +
+                         " mm, z = " + mm(zs[k]) + " mm is " + mm(h) +
                          " mm above the base plane (layer thickness must be > 0)");
       }
       column[p] = static_cast<int>(m.nodes.size());
       for (int j = 0; j <= o.layers; ++j) {
-        m.nodes.emplace_back(lo.x() + i * dx, base_y + s[j] * h, lo.y() + k * dz);
+        m.nodes.emplace_back(xs[i], base_y + s[j] * h, zs[k]);
       }
       m.base_nodes.push_back(column[p]);
     }

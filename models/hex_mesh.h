@@ -3,7 +3,8 @@
 //
 // Insert meshing: the top of the insert is a height field over its footprint (the articular
 // dishes, the eminence and the rim all face up), so the solid is a structured grid of columns:
-// a regular grid of element_size over the x-z footprint (x anterior, z lateral in T), a
+// a grid over the x-z footprint (x anterior, z lateral in T: regular, or refined where the
+// contact is and growing away from it, make_refined_lines), a
 // vertical ray at each grid point finds the top surface (the highest hit on the closed insert
 // mesh), and each column from the base plane y = base_y up to that height is split into
 // `layers` elements graded towards the surface (the top layer `grading` times the bottom
@@ -49,10 +50,32 @@ HexMesh make_graded_box_hex_mesh(const std::vector<double>& xs, const std::vecto
 std::vector<double> make_graded_lines(double a, double b, double centre, double half_width,
                                       double fine, double ratio);
 
+// an interval [lo, hi] of a coordinate [m]
+struct Interval {
+  double lo = 0.0, hi = 0.0;
+};
+
+// grid lines from a to b [m] (a < b) with spacing `fine` inside the intervals and growing
+// away from them, the spacing s(v) = min(coarse, fine + (growth - 1) d(v)) at a distance d(v)
+// from the nearest interval (a geometric growth by `growth` per element, capped at `coarse`);
+// the lines divide the integral of 1/s into whole cells, so the spacing is within rounding of
+// s(v) and the grid ends exactly at a and b. No interval, or coarse = fine: the uniform grid
+// of `coarse` (a whole number of cells, the nearest to (b - a) / coarse).
+std::vector<double> make_refined_lines(double a, double b, const std::vector<Interval>& fine_zone,
+                                       double fine, double coarse, double growth);
+
 struct InsertMeshOptions {
-  double element_size = 1e-3;  // grid spacing over the footprint [m], > 0
+  double element_size = 1e-3;  // grid spacing over the footprint [m], > 0; in the refined
+                               // zone when there is one (along x, and z unless given below)
+  double element_size_z = 0.0; // refined spacing along z [m]; 0: element_size
   int layers = 4;              // elements through the thickness, >= 1
   double grading = 0.5;        // top layer thickness / bottom layer thickness, > 0
+  // refinement (make_refined_lines): spacing element_size over the intervals of x and of z
+  // given (a tensor-product zone), growing by `growth` per element to outer_element_size
+  // outside; no intervals or outer_element_size <= element_size: the uniform grid
+  double outer_element_size = 0.0;   // [m]
+  double growth = 1.3;               // [-], >= 1
+  std::vector<Interval> refine_x, refine_z;  // [m], T frame
 };
 
 // the hex mesh of a closed insert (frame T, base plane y = base_y); throws InputError for

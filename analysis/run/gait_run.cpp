@@ -169,6 +169,10 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
     data = engine::make_data(built.model);
     engine::calc_forces(built.model, state, data);
     summary.update(describe_solid_cycle(built.model, state, *tracker));
+    if (!built.refined_contact_node.empty()) {
+      summary["contact_outside_refined_zone"] =
+          calc_share_outside_zone(*tracker, built.refined_contact_node);
+    }
   }
   if (result.status != engine::StepStatus::kOk) {
     // keep what was complete, under names that cannot be mistaken for a finished run

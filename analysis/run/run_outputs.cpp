@@ -143,6 +143,33 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
   }
   j["build_seconds"] = built.build_seconds;
   j["sdf_seconds"] = built.sdf_seconds;
+  if (!m.insert_solid.empty()) {
+    // the [deformable] keys as given, and the mesh they made
+    j["deformable_element_size_mm"] = config.deformable_element_size_mm;
+    j["deformable_elements_across_contact"] = config.deformable_elements_across_contact;
+    j["deformable_layers"] = config.deformable_layers;
+    j["deformable_grading"] = config.deformable_grading;
+    j["deformable_refine"] = config.deformable_refine;
+    const models::DeformableMeshReport& d = built.deformable_mesh;
+    j["deformable_mesh"] = {{"element_size_ap_mm", d.element_size_x * 1e3},
+                            {"element_size_ml_mm", d.element_size_z * 1e3},
+                            {"layers", d.layers},
+                            {"grading", d.grading},
+                            {"elements", d.elements},
+                            {"rigid_patch_width_ap_mm", d.patch_width_x * 1e3},
+                            {"rigid_patch_width_ml_mm", d.patch_width_z * 1e3},
+                            {"contact_layer_thickness_mm", d.layer_thickness * 1e3}};
+    if (!built.refined_x.empty()) {
+      j["deformable_outer_element_size_mm"] = config.deformable_outer_element_size_mm;
+      auto zone = [](const std::vector<models::Interval>& v) {
+        nlohmann::json a = nlohmann::json::array();
+        for (const auto& i : v) a.push_back({i.lo * 1e3, i.hi * 1e3});
+        return a;
+      };
+      j["deformable_refined_zone_mm"] = {{"x", zone(built.refined_x)},
+                                         {"z", zone(built.refined_z)}};
+    }
+  }
   return j;
 }
 

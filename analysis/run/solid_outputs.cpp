@@ -10,7 +10,8 @@
 namespace kneesim::run {
 
 SolidCycleTracker::SolidCycleTracker(const engine::Model& model)
-    : von_mises_max(model.insert_solid.num_elements(), 0.0) {
+    : von_mises_max(model.insert_solid.num_elements(), 0.0),
+      normal_force_sum(model.insert_contact.size(), 0.0) {
   const long steps = std::lround(model.period / model.dt) + 2;
   kinetic.reserve(steps);
   internal.reserve(steps);
@@ -20,8 +21,20 @@ void SolidCycleTracker::observe(const engine::Data& data) {
   const engine::solid::SolidData& sd = data.insert_solid;
   const int n = static_cast<int>(von_mises_max.size());
   for (int e = 0; e < n; ++e) von_mises_max[e] = std::max(von_mises_max[e], sd.von_mises[e]);
+  const std::vector<Eigen::Vector3d>& force = data.insert_contact.force;
+  for (size_t i = 0; i < normal_force_sum.size(); ++i) normal_force_sum[i] += force[i].norm();
   kinetic.push_back(sd.kinetic_energy);
   internal.push_back(sd.total_strain_energy + sd.total_plastic_work);
+}
+
+double calc_share_outside_zone(const SolidCycleTracker& tracker,
+                               const std::vector<unsigned char>& refined_node) {
+  double outside = 0.0, total = 0.0;
+  for (size_t i = 0; i < tracker.normal_force_sum.size() && i < refined_node.size(); ++i) {
+    total += tracker.normal_force_sum[i];
+    if (!refined_node[i]) outside += tracker.normal_force_sum[i];
+  }
+  return total > 0.0 ? outside / total : 0.0;
 }
 
 nlohmann::json describe_solid_model(const engine::Model& model) {

@@ -20,9 +20,16 @@ struct SolidCycleTracker {
   std::vector<double> von_mises_max;  // per element, max over the observed steps [Pa]
   std::vector<double> kinetic;        // solid kinetic energy per observed step [J]
   std::vector<double> internal;       // elastic + hourglass + plastic work [J]
+  std::vector<double> normal_force_sum;  // per top contact node, sum of |normal force| over
+                                         // the observed steps [N] (an impulse / dt)
   explicit SolidCycleTracker(const engine::Model& model);
   void observe(const engine::Data& data);
 };
+
+// the share of the observed contact impulse carried by top nodes outside the refined zone
+// (refined_node: per model.insert_contact node, 1 inside; models/contact_footprint.h)
+double calc_share_outside_zone(const SolidCycleTracker& tracker,
+                               const std::vector<unsigned char>& refined_node);
 
 // summary fields of the solid itself: element and node counts, mass and mass scaling, damping
 nlohmann::json describe_solid_model(const engine::Model& model);

@@ -15,6 +15,7 @@
 #include "engine/io/source_tree.h"
 #include "engine/errors.h"
 #include "engine/solid/solid_build.h"
+#include "models/deformable_insert.h"
 #include "models/generic_tkr.h"
 #include "models/hex_mesh.h"
 #include "models/mesh_io.h"
@@ -151,4 +152,101 @@ TEST_CASE("insert hex mesh bad input is one sentence naming the value and the ra
   CHECK_THROWS_WITH_AS(models::make_insert_hex_mesh(insert, 0.010, o),
                        doctest::Contains("mm above the base plane (layer thickness must be > 0)"),
                        InputError);
+}
+
+TEST_CASE("refined grid lines: fine in the zone, growing away from it, ending exactly") {
+  // zone [-5, 5] mm and [12, 14] mm of [-20, 20] mm; 0.25 mm in it, growing by 1.3 to 2 mm
+  const std::vector<models::Interval> zone = {{-5e-3, 5e-3}, {12e-3, 14e-3}};
+  const std::vector<double> v = models::make_refined_lines(-20e-3, 20e-3, zone, 0.25e-3, 2e-3, 1.3);
+  REQUIRE(v.size() > 2u);
+  CHECK(v.front() == -20e-3);
+  CHECK(v.back() == 20e-3);
+  double in_zone_max = 0.0, largest = 0.0, worst_ratio = 1.0;
+  for (size_t i = 1; i < v.size(); ++i) {
+    const double h = v[i] - v[i - 1];
+    CHECK(h > 0.0);
+    largest = std::max(largest, h);
+    const double mid = 0.5 * (v[i] + v[i - 1]);
+    if ((mid > -5e-3 && mid < 5e-3) || (mid > 12e-3 && mid < 14e-3)) in_zone_max = std::max(in_zone_max, h);
+    if (i > 1) {
+      const double prev = v[i - 1] - v[i - 2];
+      worst_ratio = std::max(worst_ratio, std::max(h / prev, prev / h));
+    }
+  }
+  // the spacing follows s(v) = min(coarse, fine + 0.3 d) to within the rounding of whole cells
+  CHECK(in_zone_max < 0.25e-3 * 1.05);
+  CHECK(largest < 2e-3 * 1.05);
+  CHECK(largest > 2e-3 * 0.9);  // the far ends reach the coarse spacing
+  CHECK(worst_ratio < 1.3 * 1.05);  // neighbours differ by the growth at most
+  // no zone, or coarse = fine: the uniform grid
+  const std::vector<double> u = models::make_refined_lines(0.0, 10e-3, {}, 1e-3, 2e-3, 1.3);
+  CHECK(u.size() == 6u);
+  CHECK(u[1] == doctest::Approx(2e-3).scale(0));
+}
+
+TEST_CASE("graded layers: the top layer as asked, the fewest layers growing by 'growth' that reach the height") {
+  for (const auto& [height, top] : {std::pair{8e-3, 0.5e-3}, std::pair{6e-3, 0.15e-3},
+                                    std::pair{10e-3, 1e-3}}) {
+    CAPTURE(height);
+    CAPTURE(top);
+    const auto [layers, grading] = models::find_graded_layers(height, top, 1.5);
+    // the fewest layers of growth 1.5 that reach the height
+    const double q = 1.5;
+    CHECK(top * (std::pow(q, layers) - 1) / (q - 1) >= height * (1 - 1e-12));
+    CHECK(top * (std::pow(q, layers - 1) - 1) / (q - 1) < height);
+    // the mesh's layer fractions give exactly that top layer
+    const double r = std::pow(grading, 1.0 / (layers - 1));
+    double sum = 0.0, t = 1.0;
+    for (int l = 0; l < layers; ++l, t *= r) sum += t;
+    CHECK(height * std::pow(r, layers - 1) / sum == doctest::Approx(top).epsilon(1e-9));
+    // the layer count rounded up, so the growth that fits the height is at most the one asked
+    CHECK(1.0 / r <= q * (1 + 1e-9));
+    CHECK(1.0 / r > 1.0);
+  }
+  CHECK(models::find_graded_layers(1e-3, 2e-3, 1.5) == std::pair<int, double>{1, 1.0});
+}
+
+TEST_CASE("generic insert mesh refined in a zone: whole columns, fine spacing there, no inverted element") {
+  const models::GenericTkrParams p;
+  const models::TriMesh insert = models::make_generic_insert(p, 1e-3);
+  models::InsertMeshOptions o;
+  o.element_size = 0.6e-3;
+  o.element_size_z = 0.8e-3;
+  o.outer_element_size = 3e-3;
+  o.layers = 5;
+  o.grading = 0.2;
+  o.refine_x = {{-8e-3, 6e-3}};
+  o.refine_z = {{-28e-3, -14e-3}, {14e-3, 28e-3}};
+  const models::HexMesh m = models::make_insert_hex_mesh(insert, 0.0, o);
+  const auto s = engine::solid::make_solid_model(m.nodes, m.elements, uhmwpe(), {});
+  MESSAGE("refined generic insert: " << m.elements.size() << " elements");
+  CHECK(m.elements.size() == 5 * m.top_faces.size());
+  CHECK(m.nodes.size() == 6 * m.base_nodes.size());  // whole columns (the wear update needs them)
+  CHECK(mesh_volume(s) == doctest::Approx(models::enclosed_volume(insert)).epsilon(0.01).scale(0));
+  // the top faces inside the zone are at most the refined spacing wide
+  int inside = 0;
+  for (const auto& q : m.top_faces) {
+    const Eigen::Vector3d c = 0.25 * (m.nodes[q[0]] + m.nodes[q[1]] + m.nodes[q[2]] + m.nodes[q[3]]);
+    if (!(c.x() > -8e-3 && c.x() < 6e-3 && std::abs(c.z()) > 14e-3 && std::abs(c.z()) < 28e-3)) continue;
+    ++inside;
+    double dx = 0.0, dz = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      dx = std::max(dx, std::abs(m.nodes[q[a]].x() - m.nodes[q[(a + 1) % 4]].x()));
+      dz = std::max(dz, std::abs(m.nodes[q[a]].z() - m.nodes[q[(a + 1) % 4]].z()));
+    }
+    CHECK(dx < 0.6e-3 * 1.05);
+    CHECK(dz < 0.8e-3 * 1.05);
+  }
+  // the zone holds (14 / 0.6) x (2 x 14 / 0.8) = 817 refined cells; those cut by its edges
+  // (a spacing that does not divide it) and by the insert's outline are not counted
+  CHECK(inside > 0.9 * 817);
+  // the same zone with no refinement keeps the uniform mesher's grid
+  o.outer_element_size = 0.0;
+  o.element_size_z = 0.0;
+  o.element_size = 2e-3;
+  const models::HexMesh u = models::make_insert_hex_mesh(insert, 0.0, o);
+  o.refine_x.clear();
+  o.refine_z.clear();
+  const models::HexMesh u2 = models::make_insert_hex_mesh(insert, 0.0, o);
+  CHECK(u.nodes == u2.nodes);
 }

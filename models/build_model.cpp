@@ -1,4 +1,5 @@
 #include "models/build_model.h"
+#include "models/contact_law_file.h"
 
 #include <algorithm>
 #include <chrono>
@@ -349,6 +350,15 @@ engine::InsertSurface make_worn_insert_surface(const BuiltModel& pristine, const
 }
 
 BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
+  if (c.contact_law_resolution.needs_calibration && c.insert_kind != "deformable") {
+    // the law as specified would inflate the pressures silently (models/contact_law_library.h)
+    throw InputError(
+        (c.file.empty() ? std::string("config") : c.file.string()) +
+        ": no calibrated contact law for implant \"" + implant_identity(c) + "\" and material \"" +
+        c.material.name + "\" (key " + c.contact_law_resolution.key +
+        "): the kneesim commands calibrate it on first use; give contact.calibration = \"off\" "
+        "(--no-calibrate) for the law as specified, or name one (contact.law_file)");
+  }
   const auto start = std::chrono::steady_clock::now();
   BuiltModel out;
   engine::Model& m = out.model;

@@ -4,6 +4,7 @@
 // range.
 #include "models/config.h"
 #include "models/contact_law_file.h"
+#include "models/contact_law_library.h"
 
 #include <algorithm>
 #include <cmath>
@@ -321,8 +322,10 @@ Registry make_registry(Config& c) {
     "friction coefficient replacing the material's (-1: the material's)");
   r.text("contact.law_file", c.contact_law_file,
     "a calibrated contact law (kneesim calibrate-contact) replacing contact.law and the foundation modulus");
+  r.choice("contact.calibration", c.contact_calibration, {"auto", "first_use", "off"},
+    "rigid insert: auto: the law calibrated against the deformable insert for the implant and material (shipped in models/contact_laws or cached), else the law as specified with a warning; first_use: calibrated now when none is found (one deformable cycle, cached); off: the law as specified, with a warning (--no-calibrate)");
   r.number("contact.foundation_modulus_MPa", c.contact_foundation_modulus_MPa, 0.0, 1e6,
-    "foundation modulus replacing K = (1-nu)E/((1+nu)(1-2nu)) (0: the material's K)");
+    "foundation modulus replacing K = (1-nu)E/((1+nu)(1-2nu)) (0: the calibrated law's K_eff, contact.calibration, or the material's K)");
 
   r.choice("rig.preset", c.rig_preset, {"stanmore", "materials_study", "displacement", "iso"},
     "simulator rig: DOFs, restraint and offsets (rig presets in the user guide)");
@@ -455,7 +458,7 @@ Registry make_registry(Config& c) {
   r.number("deformable.grading", c.deformable_grading, 0.01, 20.0,
     "deformable insert: top / bottom layer thickness ratio (layers > 0)");
   r.choice("deformable.refine", c.deformable_refine, {"contact", "none"},
-    "deformable insert: footprint grid refined where a rigid gait cycle's loaded contact occurs and growing away from it (contact), or one spacing everywhere (none)");
+    "deformable insert: footprint grid refined to element_size_mm where the gait cycle's contact occurs (a rigid cycle finds it), or uniform");
   r.number("deformable.outer_element_size_mm", c.deformable_outer_element_size_mm, 0.2, 10.0,
     "deformable insert with refine = contact: grid spacing away from the contact zone");
   r.number("deformable.refine_margin_mm", c.deformable_refine_margin_mm, 0.0, 20.0,
@@ -863,18 +866,14 @@ Config load_config(const std::filesystem::path& file, const std::vector<Override
                       ? "${KNEESIM_SOURCE}/loads/iso14243/iso14243_3_approx.csv"
                       : "${KNEESIM_SOURCE}/loads/iso14243/iso14243_1_approx.csv";
   }
-  if (!c.contact_law_file.empty()) {
-    // the calibrated law replaces the law and modulus, for this material and implant only
-    const CalibratedContactLaw law = read_contact_law_file(
-        resolve_path(c, c.contact_law_file), c.material.name, implant_identity(c));
-    c.contact_law = law.law;
-    c.contact_foundation_modulus_MPa = law.foundation_modulus_MPa;
-  }
   if (c.implant_kind == "mesh" && (c.femur_mesh.empty() || c.insert_mesh.empty())) {
     throw InputError((file.empty() ? std::string("config") : file.string()) +
                      ": implant.kind = \"mesh\" needs both implant.mesh.femur and "
                      "implant.mesh.insert");
   }
+  // the rigid contact law: a law file, a modulus, the calibrated law of the implant and
+  // material, or the law as specified
+  resolve_contact_law(c);
   return c;
 }
 

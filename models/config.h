@@ -65,6 +65,23 @@ struct WearConfig {
 // belong to wear.creep = true (any law)
 std::vector<std::string> wear_law_parameter_keys(const std::string& law);
 
+// how the rigid insert's contact law of a config was found (models/contact_law_library.h);
+// filled by load_config, completed by run::ensure_contact_law when it calibrates
+struct ContactLawResolution {
+  // "library" (shipped, models/contact_laws), "cache" (calibrated on an earlier first use),
+  // "calibrated" (calibrated by this process), "law_file" (contact.law_file),
+  // "modulus" (contact.foundation_modulus_MPa), "specified" (contact.calibration = "off"),
+  // "unused" (deformable insert), "" (none found yet: needs_calibration)
+  std::string source;
+  std::string file;                // the law file used, "" when none
+  std::string key;                 // the config's calibration key (models/contact_law_key.h)
+  bool needs_calibration = false;  // no law found for the key: calibrate before a rigid run
+  std::string note;                // a stale law for the same implant path, when found
+  std::string warning;             // one line: the law as specified and how far off it runs
+  // the law file's provenance: key -> value in TOML syntax
+  std::vector<std::pair<std::string, std::string>> provenance;
+};
+
 struct Config {
   std::filesystem::path file;  // the config file ("" for built-in defaults)
 
@@ -109,6 +126,11 @@ struct Config {
   // contact_law and contact_foundation_modulus_MPa; "" for the law as specified
   std::string contact_law_file;
   double contact_foundation_modulus_MPa = 0.0;  // > 0 replaces the material's K [MPa]
+  // "auto": the law calibrated for the implant and material (shipped or cached), else the law
+  // as specified with a warning; "first_use": calibrated now when none is found; "off": the law
+  // as specified, with a warning (--no-calibrate)
+  std::string contact_calibration = "auto";
+  ContactLawResolution contact_law_resolution;
 
   // [rig]
   std::string rig_preset = "stanmore";     // "stanmore" | "materials_study" | "displacement" | "iso"

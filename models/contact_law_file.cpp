@@ -12,6 +12,7 @@ namespace kneesim::models {
 namespace {
 
 constexpr const char* kSection = "calibrated_contact.";
+constexpr const char* kProvenance = "calibrated_contact.provenance.";
 
 std::string where(const std::filesystem::path& file, const io::TomlEntry& e) {
   return file.string() + (e.line > 0 ? ":" + std::to_string(e.line) : "");
@@ -22,7 +23,8 @@ const io::TomlEntry& require(const io::TomlDocument& doc, const std::filesystem:
   const auto it = doc.find(kSection + key);
   if (it == doc.end()) {
     throw InputError(file.string() + ": calibrated contact law file lacks the key '" +
-                     kSection + key + "' (written by kneesim calibrate-contact).");
+                     kSection + key + "' (written by kneesim calibrate-contact; a file of an "
+                     "earlier release lacks the hashes: calibrate again).");
   }
   return it->second;
 }
@@ -48,25 +50,54 @@ double number(const io::TomlDocument& doc, const std::filesystem::path& file,
   return *v;
 }
 
+// a TOML basic string (quotes and backslashes escaped)
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
 }  // namespace
 
-CalibratedContactLaw read_contact_law_file(const std::filesystem::path& file,
-                                           const std::string& material,
-                                           const std::string& implant) {
+CalibratedContactLaw read_contact_law_file(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) {
     throw InputError(file.string() + ": calibrated contact law file (contact.law_file) not found.");
   }
   const io::TomlDocument doc = io::read_toml_file(file);
+  CalibratedContactLaw law;
   for (const auto& [key, entry] : doc) {
-    if (key.rfind(kSection, 0) != 0) {
+    if (key.rfind(kProvenance, 0) == 0) {
+      // provenance is carried as written (a string quoted again, a number as text)
+      const std::string name = key.substr(std::string(kProvenance).size());
+      if (const auto* s = std::get_if<std::string>(&entry.value)) {
+        law.provenance.emplace_back(name, quoted(*s));
+      } else {
+        law.provenance.emplace_back(name, io::describe(entry.value));
+      }
+      continue;
+    }
+    static const char* const kKeys[] = {"material", "implant", "key", "implant_hash",
+                                        "material_hash", "settings_hash", "law",
+                                        "foundation_modulus_MPa", "specified_modulus_MPa",
+                                        "fitted_on"};
+    bool known = false;
+    for (const char* k : kKeys) known = known || key == std::string(kSection) + k;
+    if (!known) {
       throw InputError(where(file, entry) + ": unknown key '" + key +
-                       "' in a calibrated contact law file (allowed: the [calibrated_contact] "
-                       "table).");
+                       "' in a calibrated contact law file (allowed: material, implant, key, "
+                       "implant_hash, material_hash, settings_hash, law, foundation_modulus_MPa, "
+                       "specified_modulus_MPa, fitted_on and the provenance table).");
     }
   }
-  CalibratedContactLaw law;
   law.material = text(doc, file, "material");
   law.implant = text(doc, file, "implant");
+  law.key.key = text(doc, file, "key");
+  law.key.implant = text(doc, file, "implant_hash");
+  law.key.material = text(doc, file, "material_hash");
+  law.key.settings = text(doc, file, "settings_hash");
   law.law = text(doc, file, "law");
   law.foundation_modulus_MPa = number(doc, file, "foundation_modulus_MPa", 0.0, 1e6);
   law.specified_modulus_MPa = number(doc, file, "specified_modulus_MPa", 0.0, 1e6);
@@ -75,19 +106,31 @@ CalibratedContactLaw read_contact_law_file(const std::filesystem::path& file,
     throw InputError(where(file, require(doc, file, "law")) + ": key '" + kSection +
                      "law' = \"" + law.law + "\" is not allowed (linear, nonlinear).");
   }
-  if (law.material != material) {
-    throw InputError(where(file, require(doc, file, "material")) +
-                     ": the contact law was calibrated for material \"" + law.material +
-                     "\", the config's material.name is \"" + material +
-                     "\" (calibrate it for that material: kneesim calibrate-contact --material " +
-                     material + ").");
-  }
-  if (law.implant != implant) {
-    throw InputError(where(file, require(doc, file, "implant")) +
-                     ": the contact law was calibrated for implant \"" + law.implant +
-                     "\", the config's implant is \"" + implant + "\".");
-  }
   return law;
+}
+
+void check_contact_law_fits(const std::filesystem::path& file, const CalibratedContactLaw& law,
+                            const std::string& material, const std::string& implant,
+                            const ContactLawKey& key) {
+  if (law.material != material) {
+    throw InputError(file.string() + ": the contact law was calibrated for material \"" +
+                     law.material + "\", the config's material.name is \"" + material +
+                     "\" (calibrate it for that material: kneesim calibrate-contact --set "
+                     "material.name=" + material + ").");
+  }
+  if (law.key.material != key.material) {
+    throw InputError(file.string() + ": the contact law was calibrated for material \"" +
+                     law.material + "\" with other constants (material hash " +
+                     law.key.material + ", the config's " + key.material +
+                     "): calibrate it for the config's material.");
+  }
+  if (law.key.implant != key.implant) {
+    throw InputError(file.string() + ": the contact law was calibrated for implant \"" +
+                     law.implant + "\" (geometry hash " + law.key.implant +
+                     "), the config's implant \"" + implant + "\" hashes to " + key.implant +
+                     (law.implant == implant ? " (its meshes or placement changed since)" : "") +
+                     ": calibrate it for this implant.");
+  }
 }
 
 std::string implant_identity(const Config& config) {
@@ -97,14 +140,23 @@ std::string implant_identity(const Config& config) {
 void write_contact_law_file(const std::filesystem::path& file, const CalibratedContactLaw& law) {
   std::ostringstream s;
   s.precision(10);
-  s << "# written by kneesim calibrate-contact; named by a config as contact.law_file\n"
+  s << "# written by kneesim calibrate-contact; found by its key (models/contact_law_library.h)\n"
+    << "# or named by a config as contact.law_file\n"
     << "[calibrated_contact]\n"
-    << "material = \"" << law.material << "\"\n"
-    << "implant = \"" << law.implant << "\"\n"
-    << "law = \"" << law.law << "\"\n"
+    << "material = " << quoted(law.material) << "\n"
+    << "implant = " << quoted(law.implant) << "\n"
+    << "key = " << quoted(law.key.key) << "\n"
+    << "implant_hash = " << quoted(law.key.implant) << "\n"
+    << "material_hash = " << quoted(law.key.material) << "\n"
+    << "settings_hash = " << quoted(law.key.settings) << "\n"
+    << "law = " << quoted(law.law) << "\n"
     << "foundation_modulus_MPa = " << law.foundation_modulus_MPa << "\n"
     << "specified_modulus_MPa = " << law.specified_modulus_MPa << "\n"
-    << "fitted_on = \"" << law.fitted_on << "\"\n";
+    << "fitted_on = " << quoted(law.fitted_on) << "\n";
+  if (!law.provenance.empty()) {
+    s << "\n[calibrated_contact.provenance]\n";
+    for (const auto& [k, v] : law.provenance) s << k << " = " << v << "\n";
+  }
   io::write_file_atomic(file, s.str());
 }
 

@@ -1,48 +1,62 @@
-// A calibrated elastic-foundation law for the rigid insert (issue 11 item 6), written by
-// `kneesim calibrate-contact` and named by a config as contact.law_file. The file holds the
-// law the rigid path uses (the nonlinear or linear foundation law of physics.md section 4) with
-// an effective foundation modulus fitted against the deformable insert, and the material and
-// implant it was fitted for: a config of another material or implant cannot use it.
+// A calibrated elastic-foundation law for the rigid insert: written by `kneesim calibrate-contact`
+// (and by the calibration on first use), shipped for the built-in and example implants in
+// models/contact_laws/, cached per key (models/contact_law_library.h), or named by a config as
+// contact.law_file. The file holds the law the rigid path uses (the nonlinear or linear
+// foundation law of physics.md section 4) with an effective foundation modulus fitted against
+// the deformable insert, what it belongs to (models/contact_law_key.h: the implant, material
+// and settings hashes and the key), and how it was made:
 //
 //   [calibrated_contact]
 //   material = "uhmwpe"              # the config's material.name
 //   implant = "generic"              # "generic" or the insert mesh path as the config names it
+//   key = "..."                      # hex hashes (models/contact_law_key.h)
+//   implant_hash = "..."
+//   material_hash = "..."
+//   settings_hash = "..."
 //   law = "nonlinear"                # contact.law
-//   foundation_modulus_MPa = 812.3   # K_eff, replaces K = (1-nu)E/((1+nu)(1-2nu))
-//   specified_modulus_MPa = 4170.0   # K of the material, for the record
+//   foundation_modulus_MPa = 1433.0  # K_eff, replaces K = (1-nu)E/((1+nu)(1-2nu))
+//   specified_modulus_MPa = 4116.2   # K of the material, for the record
 //   fitted_on = "..."                # what it was fitted on, for the record
+//   [calibrated_contact.provenance]  # command, deformable mesh, errors, run times (any keys)
 //
 // Why an effective modulus and not a tabulated law: the rigid path's pressure at an element is
 // a function of its own penetration only; what the deformable insert adds is load spreading
 // (a neighbour's penetration), which no pointwise law can carry. A single stiffness factor is
 // the one degree of freedom a pointwise law has to trade peak pressure against contact area;
-// a shape change (exponent or table) was not fitted because the stance peak and mean pressure
-// errors it would have to reduce are already within the fitted modulus' reach or not at all
-// (docs/deformable.md gives the measured errors).
+// docs/deformable.md gives the errors it leaves per implant and material.
 #pragma once
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include "models/contact_law_key.h"
 
 namespace kneesim::models {
-
-struct Config;
 
 struct CalibratedContactLaw {
   std::string material;              // material name
   std::string implant;               // "generic" or the insert mesh path
+  ContactLawKey key;                 // what the law belongs to
   std::string law = "nonlinear";     // "linear" | "nonlinear"
   double foundation_modulus_MPa = 0.0;   // K_eff [MPa]
   double specified_modulus_MPa = 0.0;    // K of the material [MPa]
   std::string fitted_on;             // description
+  // how it was made: key -> value in TOML syntax (a quoted string or a number), in file order
+  std::vector<std::pair<std::string, std::string>> provenance;
 };
 
-// reads and checks a law file; InputError (one sentence naming the file, the key, the value
-// and what is allowed) for a missing or malformed file, a value out of range, or a law fitted
-// for another material or implant than `material` / `implant`
-CalibratedContactLaw read_contact_law_file(const std::filesystem::path& file,
-                                           const std::string& material,
-                                           const std::string& implant);
+// reads a law file and checks its values; InputError (one sentence naming the file, the key,
+// the value and what is allowed) for a missing or malformed file or a value out of range
+CalibratedContactLaw read_contact_law_file(const std::filesystem::path& file);
+
+// InputError naming `file` when the law was calibrated for another material (name or
+// constants) or another implant (the geometry's hash: another implant, or its meshes changed
+// since) than `material` / `key` describe
+void check_contact_law_fits(const std::filesystem::path& file, const CalibratedContactLaw& law,
+                            const std::string& material, const std::string& implant,
+                            const ContactLawKey& key);
 
 // the implant a law belongs to: "generic" for the built-in implant, else the insert mesh path
 // as the config names it

@@ -1,5 +1,6 @@
 #include "analysis/run/contact_calibration.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -87,6 +88,24 @@ TraceErrors compare_traces(const PressureTrace& r, const PressureTrace& d, doubl
   e.mean = std::sqrt(sm / dm);
   e.area = std::sqrt(sa / da);
   return e;
+}
+
+WindowFigures calc_window_figures(const PressureTrace& t, double lo, double hi) {
+  WindowFigures f;
+  for (size_t i = 0; i < t.gait_pct.size(); ++i) {
+    if (t.gait_pct[i] < lo || t.gait_pct[i] > hi || !(t.area_mm2[i] > 0.0)) continue;
+    f.peak_MPa = std::max(f.peak_MPa, t.peak_MPa[i]);
+    f.mean_peak_MPa += t.peak_MPa[i];
+    f.mean_MPa += t.mean_MPa[i];
+    f.area_mm2 += t.area_mm2[i];
+    ++f.frames;
+  }
+  if (f.frames > 0) {
+    f.mean_peak_MPa /= f.frames;
+    f.mean_MPa /= f.frames;
+    f.area_mm2 /= f.frames;
+  }
+  return f;
 }
 
 double minimize_log_golden(const std::function<double(double)>& f, double lo, double hi,

@@ -40,6 +40,17 @@ struct TraceErrors {
 TraceErrors compare_traces(const PressureTrace& rigid, const PressureTrace& deformable,
                            double lo_pct, double hi_pct);
 
+// a run's pressure figures over a window of the cycle (the frames in contact): the largest
+// frame peak, the mean of the frame peak, the mean contact pressure and the mean contact area
+struct WindowFigures {
+  double peak_MPa = 0.0;
+  double mean_peak_MPa = 0.0;
+  double mean_MPa = 0.0;
+  double area_mm2 = 0.0;
+  int frames = 0;
+};
+WindowFigures calc_window_figures(const PressureTrace& trace, double lo_pct, double hi_pct);
+
 // golden-section search for the minimum of f(x) over log x in [lo, hi] until the bracket is
 // within `rel_tol` (relative); `evaluations` counts the calls of f. A minimum at a bound is
 // returned as that bound (the caller reports it: a fit at a bound is not a finding)

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "analysis/report/file_hash.h"
+#include "analysis/run/calibrate_contact_law.h"
 #include "engine/io/vtp.h"
 
 namespace kneesim::run {
@@ -105,6 +106,11 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
   j["contact_law"] = config.contact_law;
   j["contact_foundation_modulus_MPa"] = m.contact.foundation_modulus * 1e-6;
   if (!config.contact_law_file.empty()) j["contact_law_file"] = config.contact_law_file;
+  // which law, where it came from and how it was made (models/contact_law_library.h)
+  j["contact_law_calibration"] = describe_contact_law(config, m.contact.foundation_modulus * 1e-6);
+  if (!config.contact_law_resolution.warning.empty()) {
+    j["contact_law_warning"] = config.contact_law_resolution.warning;
+  }
   j["friction"] = m.contact.friction;
   j["integrator"] = config.integrator;
   j["gait_file"] = m.gait.source();

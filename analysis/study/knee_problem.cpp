@@ -1,5 +1,8 @@
 #include "analysis/study/knee_problem.h"
 
+#include "analysis/run/calibrate_contact_law.h"
+#include "models/contact_law_library.h"
+
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -27,6 +30,7 @@ std::string value_text(double v) {
 
 StudyProblem make_knee_problem(const KneeStudySetup& s) {
   models::Config base = run::load_run_config(s.config, s.sets);
+  run::ensure_contact_law(base, s.quiet);
   if (!s.measured.empty()) base.measured_kinematics = std::filesystem::absolute(s.measured).string();
   StudyProblem p;
   if (s.vars.empty()) {
@@ -72,11 +76,17 @@ StudyProblem make_knee_problem(const KneeStudySetup& s) {
 
   // the nominal model: built once, shared (const) by every trial for its geometry
   auto nominal = std::make_shared<const models::BuiltModel>(models::build_model(base));
+  p.contact_law = run::describe_contact_law(base, nominal->model.contact.foundation_modulus * 1e-6);
   const std::vector<StudyVariable> vars = p.variables;
-  p.evaluate = [s, vars, nominal](const std::vector<double>& x) {
+  p.evaluate = [s, vars, nominal, base](const std::vector<double>& x) {
     std::vector<std::string> sets = s.sets;
     for (size_t j = 0; j < vars.size(); ++j) sets.push_back(vars[j].key + "=" + value_text(x[j]));
-    const models::Config config = run::load_run_config(s.config, sets);
+    models::Config config = run::load_run_config(s.config, sets);
+    if (config.contact_law_resolution.needs_calibration) {
+      // a trial that varies the material or the implant has no law of its own (a calibration
+      // per trial would cost a deformable cycle each): the nominal law's K_eff / K carries over
+      models::transfer_contact_law(base, config);
+    }
     models::BuiltModel built = models::build_model(config, nominal.get());
     TrialOutcome out;
     // one gait run (the step shortened where the contact outgrew the estimated limit, as

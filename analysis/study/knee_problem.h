@@ -29,6 +29,7 @@ struct KneeStudySetup {
   bool wear = false;
   long wear_cycles = 5'000'000;
   int wear_updates = 10;
+  bool quiet = false;              // no calibration messages (first use of a contact law)
 };
 
 // validates everything (variables, wear options) and builds the nominal Model; InputError

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,8 @@ struct StudyProblem {
   io::Table measured;
   // thread-safe; x: one value per variable [key's unit]
   std::function<TrialOutcome(const std::vector<double>& x)> evaluate;
+  // the nominal config's rigid contact law and its provenance (summary.json)
+  nlohmann::json contact_law;
 };
 
 struct StudyOptions {

@@ -106,6 +106,7 @@ void write_study_outputs(const StudyProblem& p, const StudyOptions& o, const Stu
   j["method"] = method_name(o.method);
   j["seed"] = o.seed;
   j["description"] = o.description;
+  if (!p.contact_law.is_null()) j["contact_law_calibration"] = p.contact_law;
   j["trials_done"] = static_cast<long>(r.records.size()) - r.failed;
   j["trials_failed"] = r.failed;
   j["trials_resumed"] = r.resumed;

@@ -11,6 +11,7 @@
 #include "analysis/report/provenance.h"
 #include "analysis/report/wear_report.h"
 #include "analysis/run/run_outputs.h"
+#include "analysis/run/calibrate_contact_law.h"
 #include "analysis/run/wear_job.h"
 #include "wear/wear_law.h"
 #include "engine/errors.h"
@@ -34,6 +35,7 @@ struct CompareArgs {
   std::vector<std::string> sets;
   int jobs = 0;
   bool quiet = false;
+  bool no_calibrate = false;
   bool resume = false;
   bool no_plots = false;
   bool no_report = false;
@@ -47,7 +49,9 @@ struct CompareArgs {
 void run(const CompareArgs& a) {
   namespace fs = std::filesystem;
   std::vector<models::Override> base;
-  for (const auto& s : a.sets) base.push_back(models::parse_override(s));
+  for (const auto& s : with_no_calibrate(a.sets, a.no_calibrate)) {
+    base.push_back(models::parse_override(s));
+  }
   for (auto& o : wear::wear_law_overrides(a.wear_law, a.law_params)) base.push_back(o);
   // every material is checked before any simulation starts
   std::vector<run::WearJob> jobs;
@@ -59,6 +63,11 @@ void run(const CompareArgs& a) {
     o.push_back({"material.name", "\"" + m + "\""});
     run::WearJob job;
     job.config = models::load_config(a.config, o);
+    // each material's calibrated law (first use: calibrated now, before any wear run starts)
+    run::ensure_contact_law(job.config, a.quiet);
+    if (const std::string& w = job.config.contact_law_resolution.warning; !w.empty()) {
+      std::fprintf(stderr, "warning: %s: %s\n", m.c_str(), w.c_str());
+    }
     job.cycles = a.cycles;
     job.update_every = a.update_every;
     job.out = fs::path(a.out) / m;
@@ -302,6 +311,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--reference", args->reference,
                   "material the break-even wear-factor ratios refer to")
       ->capture_default_str();
+  add_no_calibrate_flag(cmd, args->no_calibrate);
   cmd->add_flag("--resume", args->resume,
                 "continue a killed comparison: each material from its DIR/<material>/"
                 "wear.checkpoint, a material that had finished from its summary.json");

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string>
 
+#include "analysis/run/calibrate_contact_law.h"
 #include "analysis/run/run_outputs.h"
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
@@ -40,6 +41,7 @@ struct ParticlesOptions {
   int max_iterations = 0;
   bool no_film = false;
   bool no_plots = false;
+  bool no_calibrate = false;
 };
 
 std::string map_csv(const std::vector<double>& v, int rows, int cols, double scale) {
@@ -84,10 +86,17 @@ nlohmann::json body_json(const pt::BodySpec& b) {
 
 // A knee pair's contact pressure: the mean peak pressure of `kneesim run` with the pair's insert
 // material (built-in implant, default rig and gait, the settled cycle), i.e. of kneesim's rigid
-// insert on its elastic foundation (the deformable insert does not exist yet).
-pt::KneeContactPressure knee_contact_pressure(pt::PairName pair) {
+// insert with the same contact law as every command: the law calibrated against the deformable
+// insert, or with --no-calibrate the law as specified.
+pt::KneeContactPressure knee_contact_pressure(pt::PairName pair, bool no_calibrate) {
   const std::string material = pt::knee_pair_material(pair);
-  const models::Config config = models::load_config("", {{"material.name", material}});
+  std::vector<models::Override> overrides = {{"material.name", material}};
+  if (no_calibrate) overrides.push_back({"contact.calibration", "\"off\""});
+  models::Config config = models::load_config("", overrides);
+  run::ensure_contact_law(config);
+  if (const std::string& w = config.contact_law_resolution.warning; !w.empty()) {
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
   const models::BuiltModel built = models::build_model(config);
   engine::State state = engine::make_initial_state(built.model);
   engine::Data data = engine::make_data(built.model);
@@ -100,9 +109,12 @@ pt::KneeContactPressure knee_contact_pressure(pt::PairName pair) {
   }
   const double p = run::calc_cycle_figures(r.frames).mean_peak_pressure_MPa;
   char buf[256];
-  std::snprintf(buf, sizeof buf, "kneesim run --set material.name=%s: mean peak pressure %.2f MPa "
-                "(rigid insert, elastic foundation; built-in implant, %s rig)",
-                material.c_str(), p, config.rig_preset.c_str());
+  const models::ContactLawResolution& law = config.contact_law_resolution;
+  std::snprintf(buf, sizeof buf, "kneesim run --set material.name=%s%s: mean peak pressure %.2f MPa "
+                "(rigid insert, contact law %s, K %.0f MPa; built-in implant, %s rig)",
+                material.c_str(), no_calibrate ? " --no-calibrate" : "", p,
+                law.source == "specified" ? "as specified" : ("calibrated, " + law.source).c_str(),
+                built.model.contact.foundation_modulus * 1e-6, config.rig_preset.c_str());
   return {p * 1e6, buf};
 }
 
@@ -113,7 +125,7 @@ void run_particles(const ParticlesOptions& o) {
     if (o.contact_pressure_MPa > 0.0) {
       return pt::KneeContactPressure{o.contact_pressure_MPa * 1e6, "--contact-pressure-MPa"};
     }
-    return knee_contact_pressure(pair);
+    return knee_contact_pressure(pair, o.no_calibrate);
   };
   pt::ParticleModelConfig c = [&] {
     if (!o.config.empty()) return pt::read_particle_config(o.config, knee_pressure);
@@ -266,6 +278,7 @@ void add_particles_command(CLI::App& app) {
       ->check(finite_range(1, 1e6));
   cmd->add_flag("--no-film", opts->no_film, "drop transfer films (homogeneous model)");
   cmd->add_flag("--no-plots", opts->no_plots, "skip the PNG plots");
+  add_no_calibrate_flag(cmd, opts->no_calibrate);
   cmd->callback([opts]() {
     io::check_output_folder(opts->out);  // before any work
     run_particles(*opts);

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "analysis/report/provenance.h"
+#include "analysis/run/calibrate_contact_law.h"
 #include "analysis/run/gait_run.h"
 #include "engine/io/plot.h"
 #include "tools/kneesim/commands.h"
@@ -24,12 +25,17 @@ struct RunArgs {
   bool no_report = false;
   bool export_fe = false;
   std::vector<double> export_fe_pcts;
+  bool no_calibrate = false;
 };
 
 void run(const RunArgs& a) {
   namespace fs = std::filesystem;
   run::GaitRunJob job;
-  job.config = run::load_run_config(a.config, a.sets);
+  job.config = run::load_run_config(a.config, with_no_calibrate(a.sets, a.no_calibrate));
+  run::ensure_contact_law(job.config, a.quiet);
+  if (const std::string& w = job.config.contact_law_resolution.warning; !w.empty()) {
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
   if (a.cycles > 0) job.config.cycles = a.cycles;
   if (!a.measured.empty()) job.config.measured_kinematics = fs::absolute(a.measured).string();
   job.out = a.out;
@@ -117,6 +123,7 @@ void add_run_command(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::Range(0.0, 99.999));
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
+  add_no_calibrate_flag(cmd, args->no_calibrate);
   cmd->callback([args] { run(*args); });
 }
 

@@ -29,6 +29,7 @@ struct StudyArgs {
   bool quiet = false;
   std::string wear_law;                 // "" = the config's wear.law
   std::vector<std::string> law_params;  // name=value
+  bool no_calibrate = false;
 };
 
 // FNV-1a of a string through the checkpoint's hash (wear/checkpoint.h)
@@ -139,7 +140,10 @@ void add_study_command(CLI::App& app) {
                 "continue the study in DIR from its journal (no finished trial is lost or run "
                 "again)");
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
+  add_no_calibrate_flag(cmd, args->no_calibrate);
   cmd->callback([args] {
+    args->setup.sets = with_no_calibrate(args->setup.sets, args->no_calibrate);
+    args->setup.quiet = args->quiet;
     io::check_output_folder(args->out);  // before any work
     run(*args);
   });

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "analysis/report/provenance.h"
+#include "analysis/run/calibrate_contact_law.h"
 #include "analysis/run/wear_job.h"
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
@@ -28,6 +29,7 @@ struct WearArgs {
   bool resume = false;
   bool allow_any_wear_factor = false;
   bool quiet = false;
+  bool no_calibrate = false;
   bool no_depth_maps = false;
   bool no_plots = false;
   bool no_report = false;
@@ -43,6 +45,7 @@ void run_convergence(const WearArgs& a, const std::vector<models::Override>& ove
   for (long every : a.convergence) {
     run::WearJob job;
     job.config = models::load_config(a.config, overrides);
+    run::ensure_contact_law(job.config, a.quiet);
     job.cycles = a.cycles;
     job.update_every = every;
     job.interval_flag = "--convergence";
@@ -84,7 +87,9 @@ void run_convergence(const WearArgs& a, const std::vector<models::Override>& ove
 
 void run(const WearArgs& a) {
   std::vector<models::Override> overrides;
-  for (const auto& s : a.sets) overrides.push_back(models::parse_override(s));
+  for (const auto& s : with_no_calibrate(a.sets, a.no_calibrate)) {
+    overrides.push_back(models::parse_override(s));
+  }
   if (!a.material.empty()) overrides.push_back({"material.name", "\"" + a.material + "\""});
   for (auto& o : wear::wear_law_overrides(a.wear_law, a.law_params)) overrides.push_back(o);
   if (!a.convergence.empty()) {
@@ -93,6 +98,10 @@ void run(const WearArgs& a) {
   }
   run::WearJob job;
   job.config = models::load_config(a.config, overrides);
+  run::ensure_contact_law(job.config, a.quiet);
+  if (const std::string& w = job.config.contact_law_resolution.warning; !w.empty()) {
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
   job.cycles = a.cycles;
   job.update_every = a.update_every;
   job.schedule = a.schedule;
@@ -178,6 +187,7 @@ void add_wear_command(CLI::App& app) {
                 "skip DIR/report.html (one self-contained page: key numbers, 3D wear-depth view "
                 "per update, plots, provenance)");
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
+  add_no_calibrate_flag(cmd, args->no_calibrate);
   cmd->callback([args] {
     io::check_output_folder(args->out);  // before any work
     run(*args);

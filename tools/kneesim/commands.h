@@ -79,6 +79,21 @@ inline void add_wear_law_options(CLI::App* cmd, std::string& law,
       ->delimiter(',');
 }
 
+// --no-calibrate on every command that simulates: the rigid insert's contact law as specified
+// instead of the calibrated one (models/contact_law_library.h)
+inline void add_no_calibrate_flag(CLI::App* cmd, bool& flag) {
+  cmd->add_flag("--no-calibrate", flag,
+                "rigid insert: the elastic-foundation law as specified, K = (1-nu)E/((1+nu)(1-2nu)), "
+                "instead of the law calibrated against the deformable insert (no calibration on "
+                "first use; a warning says how far such pressures run)");
+}
+
+// the --set list with contact.calibration = "off" when --no-calibrate was given
+inline std::vector<std::string> with_no_calibrate(std::vector<std::string> sets, bool no_calibrate) {
+  if (no_calibrate) sets.push_back("contact.calibration=\"off\"");
+  return sets;
+}
+
 void add_run_command(CLI::App& app);
 void add_particles_command(CLI::App& app);
 void add_wear_command(CLI::App& app);

@@ -8,6 +8,7 @@
 
 #include "analysis/diagnosis/forces_diagnosis.h"
 #include "engine/io/output_folder.h"
+#include "tools/kneesim/commands.h"
 #include "tools/kneesim/diagnose_options.h"
 
 namespace kneesim::cli {
@@ -16,6 +17,7 @@ namespace {
 struct DiagnoseForcesOptions {
   diagnosis::ForcesDiagnosisOptions run;
   DiagnoseCommonOptions common;
+  bool no_calibrate = false;     // the rigid contact law as specified
 };
 
 void run_diagnose_forces(DiagnoseForcesOptions o) {
@@ -51,8 +53,10 @@ void add_diagnose_forces(CLI::App* diagnose) {
   cmd->add_option("--threads", opt->run.threads, "simulations run at a time")
       ->capture_default_str();
   add_diagnose_common_options(cmd, opt->common);
+  add_no_calibrate_flag(cmd, opt->no_calibrate);
   cmd->callback([opt] {
     io::check_output_folder(opt->common.out);  // before any work
+    prepare_contact_law(opt->run.config, opt->run.sets, opt->no_calibrate);
     run_diagnose_forces(*opt);
   });
 }

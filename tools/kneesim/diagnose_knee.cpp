@@ -7,6 +7,7 @@
 
 #include "analysis/diagnosis/knee_diagnosis.h"
 #include "engine/io/output_folder.h"
+#include "tools/kneesim/commands.h"
 #include "tools/kneesim/diagnose_options.h"
 
 namespace kneesim::cli {
@@ -15,6 +16,7 @@ namespace {
 struct DiagnoseKneeWearOptions {
   diagnosis::KneeWearDiagnosisOptions run;
   DiagnoseCommonOptions common;
+  bool no_calibrate = false;     // the rigid contact law as specified
 };
 
 void run_diagnose_knee_wear(const DiagnoseKneeWearOptions& o) {
@@ -37,6 +39,7 @@ struct DiagnoseKinematicsOptions {
   diagnosis::KinematicsDiagnosisOptions run;
   bool multi_start = false;      // multi-start the full-data fits
   DiagnoseCommonOptions common;
+  bool no_calibrate = false;     // the rigid contact law as specified
 };
 
 void run_diagnose_kinematics(const DiagnoseKinematicsOptions& o) {
@@ -79,8 +82,10 @@ void add_diagnose_knee_wear(CLI::App* diagnose) {
                   "loop (0: wear linear in cycles on the pristine insert)")
       ->capture_default_str();
   add_diagnose_common_options(cmd, opt->common);
+  add_no_calibrate_flag(cmd, opt->no_calibrate);
   cmd->callback([opt] {
     io::check_output_folder(opt->common.out);  // before any work
+    prepare_contact_law(opt->run.config, opt->run.sets, opt->no_calibrate);
     run_diagnose_knee_wear(*opt);
   });
 }
@@ -101,8 +106,10 @@ void add_diagnose_kinematics(CLI::App* diagnose) {
   cmd->add_flag("--multi-start", opt->multi_start,
                 "multi-start the full-data fits (about three times the simulations)");
   add_diagnose_common_options(cmd, opt->common);
+  add_no_calibrate_flag(cmd, opt->no_calibrate);
   cmd->callback([opt] {
     io::check_output_folder(opt->common.out);  // before any work
+    prepare_contact_law(opt->run.config, opt->run.sets, opt->no_calibrate);
     run_diagnose_kinematics(*opt);
   });
 }

@@ -3,7 +3,12 @@
 #include <cmath>
 #include <cstdlib>
 
+#include <cstdio>
+
+#include "analysis/run/calibrate_contact_law.h"
+#include "analysis/run/gait_run.h"
 #include "engine/errors.h"
+#include "tools/kneesim/commands.h"
 
 namespace kneesim::cli {
 
@@ -64,6 +69,16 @@ diagnosis::DiagnosisOptions make_diagnosis_options(const DiagnoseCommonOptions& 
   d.ic_threshold = o.ic_threshold;
   d.heldout_threshold = o.heldout_threshold;
   return d;
+}
+
+void prepare_contact_law(const std::string& config, std::vector<std::string>& sets,
+                         bool no_calibrate) {
+  sets = with_no_calibrate(sets, no_calibrate);
+  models::Config c = run::load_run_config(config, sets);
+  run::ensure_contact_law(c);
+  if (const std::string& w = c.contact_law_resolution.warning; !w.empty()) {
+    std::fprintf(stderr, "warning: %s\n", w.c_str());
+  }
 }
 
 }  // namespace kneesim::cli

@@ -27,6 +27,17 @@ def run(v):
         v.figure(f"{k}_pressure_err_pct", 100 * (r["mean_peak_pressure_MPa"] / STUDY[m][2] - 1), "%")
         v.figure(f"{k}_pressure_ratio", r["mean_peak_pressure_MPa"] / u["mean_peak_pressure_MPa"], "")
         v.figure(f"{k}_potential_ratio", r["wear_potential_Nmm"] / u["wear_potential_Nmm"], "")
+        # the material's rigid law and its stance figures against the deformable insert (the
+        # calibration's runs of this load case: stanmore rig, shipped gait, pristine insert)
+        law = v.json(d, m, "summary.json")["contact_law_calibration"]
+        pv = law["provenance"]
+        v.figure(f"{k}_law_source", law["source"])
+        v.figure(f"{k}_law_ratio", law["foundation_modulus_MPa"] / law["specified_modulus_MPa"], "")
+        for q in ("peak", "mean"):
+            dq, cq = pv[f"stance_{q}_MPa_deformable"], pv[f"stance_{q}_MPa_calibrated"]
+            v.figure(f"{k}_def_stance_{q}_MPa", dq, "MPa")
+            v.figure(f"{k}_cal_stance_{q}_MPa", cq, "MPa")
+            v.figure(f"{k}_cal_stance_{q}_err_pct", 100 * (cq / dq - 1), "%")
     v.figure("uhmwpe_volume_err_pct", 100 * (u["volume_mm3"] / STUDY["uhmwpe"][0] - 1), "%")
     v.figure("uhmwpe_depth_err_pct", 100 * (u["max_depth_mm"] / STUDY["uhmwpe"][1] - 1), "%")
     for m, k in (("peek", "peek"), ("cfr-peek", "cfrpeek")):
@@ -47,6 +58,9 @@ any wear factor and of the study):
 | sliding distance per cycle (mm) | {uhmwpe_sliding_distance_mm:.1f} | {peek_sliding_distance_mm:.1f} | {cfrpeek_sliding_distance_mm:.1f} |
 | cross-shear ratio | {uhmwpe_cross_shear_ratio:.3f} | {peek_cross_shear_ratio:.3f} | {cfrpeek_cross_shear_ratio:.3f} |
 | AP / IE range (mm / deg) | {uhmwpe_ap_rom_mm:.2f} / {uhmwpe_ie_rom_deg:.2f} | {peek_ap_rom_mm:.2f} / {peek_ie_rom_deg:.2f} | {cfrpeek_ap_rom_mm:.2f} / {cfrpeek_ie_rom_deg:.2f} |
+| rigid contact law (models/contact_laws/generic_*.toml): source, K_eff / K | {uhmwpe_law_source}, {uhmwpe_law_ratio:.3f} | {peek_law_source}, {peek_law_ratio:.3f} | {cfrpeek_law_source}, {cfrpeek_law_ratio:.3f} |
+| stance (0-60 %) peak pressure MPa: deformable insert / calibrated rigid (the law's calibration runs) | {uhmwpe_def_stance_peak_MPa:.1f} / {uhmwpe_cal_stance_peak_MPa:.1f} ({uhmwpe_cal_stance_peak_err_pct:+.1f} %) | {peek_def_stance_peak_MPa:.1f} / {peek_cal_stance_peak_MPa:.1f} ({peek_cal_stance_peak_err_pct:+.1f} %) | {cfrpeek_def_stance_peak_MPa:.1f} / {cfrpeek_cal_stance_peak_MPa:.1f} ({cfrpeek_cal_stance_peak_err_pct:+.1f} %) |
+| stance (0-60 %) mean pressure MPa: deformable / calibrated rigid | {uhmwpe_def_stance_mean_MPa:.2f} / {uhmwpe_cal_stance_mean_MPa:.2f} ({uhmwpe_cal_stance_mean_err_pct:+.1f} %) | {peek_def_stance_mean_MPa:.2f} / {peek_cal_stance_mean_MPa:.2f} ({peek_cal_stance_mean_err_pct:+.1f} %) | {cfrpeek_def_stance_mean_MPa:.2f} / {cfrpeek_cal_stance_mean_MPa:.2f} ({cfrpeek_cal_stance_mean_err_pct:+.1f} %) |
 | wear potential per cycle (kN mm) and its ratio to UHMWPE | {uhmwpe_potential_kNmm:.1f} | {peek_potential_kNmm:.1f} ({peek_potential_ratio:.3f}) | {cfrpeek_potential_kNmm:.1f} ({cfrpeek_potential_ratio:.3f}) |
 
 UHMWPE's wear, a prediction from Pal 2008's factor (PEEK's and CFR-PEEK's shipped factors are

@@ -1,0 +1,382 @@
+#include "analysis/run/calibrate_contact_law.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <unistd.h>
+
+#include "analysis/run/contact_calibration.h"
+#include "analysis/run/gait_run.h"
+#include "engine/contact_law.h"
+#include "engine/errors.h"
+#include "engine/io/atomic_file.h"
+#include "engine/io/json_out.h"
+#include "engine/io/output_folder.h"
+#include "engine/io/plot.h"
+#include "engine/io/table.h"
+#include "models/contact_law_key.h"
+#include "models/contact_law_library.h"
+
+namespace kneesim::run {
+namespace {
+
+constexpr double kFitLo = 0.0, kFitHi = 30.0, kHeldLo = 30.0, kHeldHi = 60.0;
+constexpr double kSearchLo = 0.01, kSearchHi = 10.0;  // K_eff / K
+
+nlohmann::json errors_json(const TraceErrors& e) {
+  return {{"peak_pressure_rms", e.peak}, {"mean_pressure_rms", e.mean},
+          {"contact_area_rms", e.area}, {"frames", e.frames}};
+}
+
+nlohmann::json figures_json(const WindowFigures& f) {
+  return {{"peak_MPa", f.peak_MPa}, {"mean_peak_MPa", f.mean_peak_MPa}, {"mean_MPa", f.mean_MPa},
+          {"area_mm2", f.area_mm2}, {"frames", f.frames}};
+}
+
+std::string number(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// the deformable reference's mesh in words, for the provenance
+std::string describe_mesh(const models::Config& c) {
+  char buf[256];
+  if (c.deformable_refine == "contact") {
+    std::snprintf(buf, sizeof buf,
+                  "%g mm where the cycle's contact occurs (margin %g mm), %g mm outside, "
+                  "%d layers, grading %g",
+                  c.deformable_element_size_mm, c.deformable_refine_margin_mm,
+                  c.deformable_outer_element_size_mm, c.deformable_layers, c.deformable_grading);
+  } else {
+    std::snprintf(buf, sizeof buf, "uniform %g mm, %d layers, grading %g",
+                  c.deformable_element_size_mm, c.deformable_layers, c.deformable_grading);
+  }
+  return buf;
+}
+
+// a finished deformable run given with --deformable-from must be of the calibration's settings
+void check_deformable_run(const std::filesystem::path& dir, const models::Config& c) {
+  const std::filesystem::path file = dir / "summary.json";
+  nlohmann::json s;
+  try {
+    s = nlohmann::json::parse(io::read_file(file));
+  } catch (const std::exception&) {
+    throw InputError(file.string() + ": --deformable-from must name a finished kneesim run "
+                     "(its summary.json is missing or unreadable).");
+  }
+  auto differs = [&](const char* key, const nlohmann::json& want) {
+    if (!s.contains(key) || s[key] != want) {
+      throw InputError(file.string() + ": --deformable-from names a run with " + key + " = " +
+                       (s.contains(key) ? s[key].dump() : std::string("(none)")) +
+                       ", the calibration needs " + want.dump() +
+                       " (a finished deformable run of the same config and material).");
+    }
+  };
+  differs("status", "complete");
+  differs("insert", "deformable");
+  differs("material", c.material.name);
+  differs("implant", c.implant_kind);
+  differs("rig_preset", c.rig_preset);
+  differs("deformable_element_size_mm", c.deformable_element_size_mm);
+  differs("deformable_layers", c.deformable_layers);
+  differs("deformable_grading", c.deformable_grading);
+  differs("deformable_refine", c.deformable_refine);
+}
+
+}  // namespace
+
+void check_fit_inside_search(double k_fit, double k_spec, const std::string& material,
+                             const std::string& implant, const std::filesystem::path& out) {
+  const double lo = kSearchLo * k_spec, hi = kSearchHi * k_spec;
+  if (k_fit < 1.05 * lo || k_fit > hi / 1.05) {
+    throw InputError("the contact-law fit for material \"" + material + "\" on implant \"" +
+                     implant + "\" ended at the search bound K_eff = " + number(k_fit) +
+                     " MPa (search " + number(lo) + " to " + number(hi) + " MPa, " +
+                     number(kSearchLo) + " to " + number(kSearchHi) +
+                     " K): no law written; the runs are in " + out.string());
+  }
+}
+
+ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job) {
+  namespace fs = std::filesystem;
+  const fs::path& out = job.out;
+  if (!job.config.contact_law_file.empty() || job.config.contact_foundation_modulus_MPa > 0.0) {
+    throw InputError("the config names a contact law (contact.law_file or "
+                     "contact.foundation_modulus_MPa); calibrate from the law as specified "
+                     "(remove it).");
+  }
+  const models::Config base = models::make_calibration_config(job.config, /*own_reference=*/true);
+  const models::ContactLawKey key = models::make_contact_law_key(base);
+  const double k_spec_MPa =
+      engine::foundation_modulus(base.material.elastic_modulus_MPa, base.material.poisson);
+  io::check_output_folder(out);
+
+  // the deformable insert over one cycle (or a finished run of the same settings)
+  double deformable_seconds = 0.0;
+  int deformable_elements = 0;
+  fs::path deformable_csv;
+  if (job.deformable_from.empty()) {
+    GaitRunJob run;
+    run.config = base;
+    run.config.insert_kind = "deformable";
+    run.config.cycles = 1;
+    run.config.contact_law_resolution = {};
+    run.config.contact_law_resolution.source = "unused";
+    run.out = out / "deformable";
+    run.quiet = job.quiet;
+    run.plots = job.plots;
+    if (!job.quiet) {
+      std::fprintf(stderr, "calibrate-contact: deformable insert (%s), 1 cycle\n",
+                   describe_mesh(base).c_str());
+    }
+    const GaitRunReport r = run_gait_job(run);
+    deformable_seconds = r.seconds;
+    deformable_elements = r.summary.value("solid_elements", 0);
+    deformable_csv = run.out / "kinematics.csv";
+  } else {
+    check_deformable_run(job.deformable_from, base);
+    deformable_csv = job.deformable_from / "kinematics.csv";
+    const auto s = nlohmann::json::parse(io::read_file(job.deformable_from / "summary.json"));
+    deformable_seconds = s.value("seconds_per_cycle", 0.0);
+    deformable_elements = s.value("solid_elements", 0);
+  }
+  const PressureTrace deformable = read_pressure_trace(deformable_csv);
+
+  // a rigid run at a foundation modulus (0: the material's), its trace and seconds per cycle
+  auto rigid_run = [&](double modulus_MPa, const fs::path& dir, double* seconds) {
+    GaitRunJob run;
+    run.config = base;
+    run.config.contact_foundation_modulus_MPa = modulus_MPa;
+    run.config.contact_law_resolution = {};
+    run.config.contact_law_resolution.source = modulus_MPa > 0.0 ? "modulus" : "specified";
+    run.out = dir;
+    run.quiet = true;
+    run.plots = false;
+    const GaitRunReport r = run_gait_job(run);
+    if (seconds) *seconds = r.seconds / run.config.cycles;
+    return read_pressure_trace(dir / "kinematics.csv");
+  };
+  double rigid_seconds = 0.0;
+  const PressureTrace specified = rigid_run(0.0, out / "rigid", &rigid_seconds);
+
+  int evaluations = 0;
+  const double lo = kSearchLo * k_spec_MPa, hi = kSearchHi * k_spec_MPa;
+  const double k_fit = minimize_log_golden(
+      [&](double k) {
+        const auto t = rigid_run(k, out / "fit", nullptr);
+        const auto e = compare_traces(t, deformable, kFitLo, kFitHi);
+        if (!job.quiet) {
+          std::fprintf(stderr, "calibrate-contact: K %.1f MPa: peak %.3f, mean %.3f (RMS, 0-30 %%)\n",
+                       k, e.peak, e.mean);
+        }
+        return e.peak * e.peak + e.mean * e.mean;
+      },
+      lo, hi, 0.01, evaluations);
+  fs::remove_all(out / "fit");
+  check_fit_inside_search(k_fit, k_spec_MPa, base.material.name, models::implant_identity(base), out);
+  double calibrated_seconds = 0.0;
+  const PressureTrace calibrated = rigid_run(k_fit, out / "rigid_calibrated", &calibrated_seconds);
+
+  const TraceErrors held_spec = compare_traces(specified, deformable, kHeldLo, kHeldHi);
+  const TraceErrors held_cal = compare_traces(calibrated, deformable, kHeldLo, kHeldHi);
+  const WindowFigures st_def = calc_window_figures(deformable, kFitLo, kHeldHi);
+  const WindowFigures st_spec = calc_window_figures(specified, kFitLo, kHeldHi);
+  const WindowFigures st_cal = calc_window_figures(calibrated, kFitLo, kHeldHi);
+
+  models::CalibratedContactLaw law;
+  law.material = base.material.name;
+  law.implant = models::implant_identity(base);
+  law.key = key;
+  law.law = base.contact_law;
+  law.foundation_modulus_MPa = k_fit;
+  law.specified_modulus_MPa = k_spec_MPa;
+  law.fitted_on = "stance 0-30 % peak and mean pressure of the deformable insert (" +
+                  describe_mesh(base) + "), rig " + base.rig_preset;
+  char date[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
+  auto& p = law.provenance;
+  p = {{"command", quoted(job.command)},
+       {"date", quoted(date)},
+       {"load_case", quoted("rig " + base.rig_preset + ", gait " +
+                            fs::path(base.gait_file).filename().string() +
+                            "; rigid 2 cycles, deformable 1 cycle")},
+       {"deformable_mesh", quoted(describe_mesh(base))},
+       {"deformable_elements", std::to_string(deformable_elements)},
+       {"modulus_ratio", number(k_fit / k_spec_MPa)},
+       {"search_range_MPa", quoted(number(lo) + " to " + number(hi))},
+       {"fit_evaluations", std::to_string(evaluations)},
+       {"fit_window_pct", quoted("0-30")},
+       {"held_out_window_pct", quoted("30-60")},
+       {"held_out_peak_rms_specified", number(held_spec.peak)},
+       {"held_out_peak_rms_calibrated", number(held_cal.peak)},
+       {"held_out_mean_rms_specified", number(held_spec.mean)},
+       {"held_out_mean_rms_calibrated", number(held_cal.mean)},
+       {"held_out_area_rms_specified", number(held_spec.area)},
+       {"held_out_area_rms_calibrated", number(held_cal.area)},
+       {"stance_peak_MPa_deformable", number(st_def.peak_MPa)},
+       {"stance_peak_MPa_specified", number(st_spec.peak_MPa)},
+       {"stance_peak_MPa_calibrated", number(st_cal.peak_MPa)},
+       {"stance_mean_peak_MPa_deformable", number(st_def.mean_peak_MPa)},
+       {"stance_mean_peak_MPa_specified", number(st_spec.mean_peak_MPa)},
+       {"stance_mean_peak_MPa_calibrated", number(st_cal.mean_peak_MPa)},
+       {"stance_mean_MPa_deformable", number(st_def.mean_MPa)},
+       {"stance_mean_MPa_specified", number(st_spec.mean_MPa)},
+       {"stance_mean_MPa_calibrated", number(st_cal.mean_MPa)},
+       {"stance_area_mm2_deformable", number(st_def.area_mm2)},
+       {"stance_area_mm2_specified", number(st_spec.area_mm2)},
+       {"stance_area_mm2_calibrated", number(st_cal.area_mm2)},
+       {"deformable_seconds_per_cycle", number(deformable_seconds)},
+       {"rigid_seconds_per_cycle", number(calibrated_seconds)}};
+  models::write_contact_law_file(out / "contact_law.toml", law);
+
+  io::Table t;
+  t.columns = {"gait_pct", "deformable_peak_MPa", "deformable_mean_MPa", "deformable_area_mm2",
+               "rigid_peak_MPa", "rigid_mean_MPa", "rigid_area_mm2", "calibrated_peak_MPa",
+               "calibrated_mean_MPa", "calibrated_area_mm2"};
+  for (size_t i = 0; i < deformable.gait_pct.size(); ++i) {
+    t.add_row({deformable.gait_pct[i], deformable.peak_MPa[i], deformable.mean_MPa[i],
+               deformable.area_mm2[i], specified.peak_MPa[i], specified.mean_MPa[i],
+               specified.area_mm2[i], calibrated.peak_MPa[i], calibrated.mean_MPa[i],
+               calibrated.area_mm2[i]});
+  }
+  io::write_csv(out / "comparison.csv", t);
+
+  nlohmann::json s;
+  s["material"] = law.material;
+  s["implant"] = law.implant;
+  s["key"] = key.key;
+  s["law"] = base.contact_law;
+  s["specified_modulus_MPa"] = k_spec_MPa;
+  s["calibrated_modulus_MPa"] = k_fit;
+  s["modulus_ratio"] = k_fit / k_spec_MPa;
+  s["search_range_MPa"] = {lo, hi};
+  s["fit_at_search_bound"] = false;
+  s["fit_evaluations"] = evaluations;
+  s["deformable_mesh"] = describe_mesh(base);
+  s["deformable_elements"] = deformable_elements;
+  s["deformable_element_mm"] = base.deformable_element_size_mm;
+  for (const auto& [name, lo_pct, hi_pct] :
+       {std::tuple{"fit_window_0_30pct", kFitLo, kFitHi},
+        std::tuple{"held_out_30_60pct", kHeldLo, kHeldHi},
+        std::tuple{"stance_0_60pct", kFitLo, kHeldHi}}) {
+    s[name]["rigid_as_specified"] = errors_json(compare_traces(specified, deformable, lo_pct, hi_pct));
+    s[name]["rigid_calibrated"] = errors_json(compare_traces(calibrated, deformable, lo_pct, hi_pct));
+  }
+  s["stance_figures"] = {{"deformable", figures_json(st_def)},
+                         {"rigid_as_specified", figures_json(st_spec)},
+                         {"rigid_calibrated", figures_json(st_cal)}};
+  s["seconds_per_cycle"] = {{"deformable", deformable_seconds},
+                            {"rigid_as_specified", rigid_seconds},
+                            {"rigid_calibrated", calibrated_seconds}};
+  s["rigid_over_deformable_time"] = deformable_seconds > 0 ? rigid_seconds / deformable_seconds : 0.0;
+  io::write_json(out / "summary.json", s);
+  if (job.plots) {
+    io::run_plot("calibrate.py", {(out / "comparison.csv").string(),
+                                  (out / "calibration.png").string(), law.material});
+  }
+  return {law, s};
+}
+
+bool ensure_contact_law(models::Config& config, bool quiet) {
+  namespace fs = std::filesystem;
+  if (!config.contact_law_resolution.needs_calibration || config.insert_kind == "deformable") {
+    return false;
+  }
+  const std::string implant = models::implant_identity(config);
+  const std::string what = "implant \"" + implant + "\", material \"" + config.material.name + "\"";
+  if (!quiet) {
+    if (!config.contact_law_resolution.note.empty()) {
+      std::fprintf(stderr, "kneesim: %s\n", config.contact_law_resolution.note.c_str());
+    }
+    std::fprintf(stderr,
+                 "kneesim: no calibrated contact law for %s: calibrating it against the "
+                 "deformable insert (first use: one deformable gait cycle and about 15 rigid "
+                 "ones; --no-calibrate runs the law as specified instead)\n",
+                 what.c_str());
+  }
+  // scratch folder: in the cache folder when there is one, else the system's temporary folder
+  const fs::path cache = models::contact_law_cache_dir();
+  const fs::path scratch =
+      (cache.empty() ? fs::temp_directory_path() : cache) /
+      ("calibrating-" + config.contact_law_resolution.key + "-" + std::to_string(::getpid()));
+  ContactCalibrationJob job;
+  job.config = models::make_calibration_config(config);  // the reference it is looked up under
+  job.out = scratch;
+  job.command = "calibration on first use (kneesim " + std::string(config.file.empty() ? "" : config.file.string()) + ")";
+  job.plots = false;
+  job.quiet = quiet;
+  ContactCalibrationReport report;
+  try {
+    fs::create_directories(scratch);
+    report = calibrate_contact_law(job);
+  } catch (const std::exception& e) {
+    throw InputError("calibrating the contact law for " + what + " failed: " + e.what() +
+                     "; run with --no-calibrate (contact.calibration = \"off\") for the law as "
+                     "specified, or name a law file (contact.law_file)");
+  }
+  fs::path file = scratch / "contact_law.toml";
+  if (!cache.empty()) {
+    const fs::path kept = cache / (report.law.key.key + ".toml");
+    try {
+      models::write_contact_law_file(kept, report.law);
+      file = kept;
+    } catch (const std::exception&) {
+      // a cache that cannot be written is no cache: the law holds for this process
+    }
+  }
+  std::error_code ec;
+  if (file.parent_path() != scratch) fs::remove_all(scratch, ec);
+  models::remember_contact_law(report.law, file);
+  models::resolve_contact_law(config);
+  if (!quiet) {
+    std::fprintf(stderr, "kneesim: calibrated K_eff = %.1f MPa (%.3f K); law in %s\n",
+                 report.law.foundation_modulus_MPa,
+                 report.law.foundation_modulus_MPa / report.law.specified_modulus_MPa,
+                 file.c_str());
+  }
+  return true;
+}
+
+nlohmann::json describe_contact_law(const models::Config& c, double modulus_MPa) {
+  const models::ContactLawResolution& r = c.contact_law_resolution;
+  nlohmann::json j;
+  j["law"] = c.contact_law;
+  j["foundation_modulus_MPa"] = modulus_MPa;
+  j["specified_modulus_MPa"] =
+      engine::foundation_modulus(c.material.elastic_modulus_MPa, c.material.poisson);
+  j["source"] = r.source;
+  if (!r.file.empty()) j["file"] = r.file;
+  if (!r.key.empty()) j["key"] = r.key;
+  if (!r.warning.empty()) j["warning"] = r.warning;
+  if (!r.note.empty()) j["note"] = r.note;
+  if (!r.provenance.empty()) {
+    nlohmann::json p;
+    for (const auto& [k, v] : r.provenance) {
+      char* end = nullptr;
+      const double x = std::strtod(v.c_str(), &end);
+      if (!v.empty() && end && *end == '\0') {
+        p[k] = x;
+      } else if (v.size() >= 2 && v.front() == '"' && v.back() == '"') {
+        p[k] = v.substr(1, v.size() - 2);
+      } else {
+        p[k] = v;
+      }
+    }
+    j["provenance"] = p;
+  }
+  return j;
+}
+
+}  // namespace kneesim::run

@@ -1,0 +1,37 @@
+#!/bin/bash
+# Regenerates the shipped calibrated contact laws (models/contact_laws/*.toml): for each implant
+# and each shipped material, `kneesim calibrate-contact` fits the rigid insert's effective
+# foundation modulus to the deformable insert (one deformable gait cycle with the default
+# [deformable] mesh, about 15 rigid ones; analysis/run/calibrate_contact_law.h) and the law file
+# it writes, with its provenance (command, date, mesh, fitted modulus, held-out errors, stance
+# figures), is copied into models/contact_laws/<implant>_<material>.toml.
+#   tools/scripts/calibrate_contact_laws.sh [--examples] [MATERIAL...]
+# Default: the built-in implant, every shipped material (uhmwpe peek cfr-peek); --examples also
+# the example implants models/examples/dm_stanmore.toml and jw_stanmore.toml (KNEESIM_DATA must
+# hold their meshes). Runs are kept in build/contact_laws/. Cost: one deformable cycle per law
+# (minutes each on 2 cores); run it with nice on a shared machine.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+kneesim=${KNEESIM_BIN:-build/tools/kneesim}
+export KNEESIM_DATA="${KNEESIM_DATA:-$(pwd)/../shared/data}"
+implants=("generic:")
+materials=()
+for a in "$@"; do
+  case "$a" in
+    --examples) implants+=("dm:models/examples/dm_stanmore.toml" "jw:models/examples/jw_stanmore.toml") ;;
+    *) materials+=("$a") ;;
+  esac
+done
+[ ${#materials[@]} -gt 0 ] || materials=(uhmwpe peek cfr-peek)
+mkdir -p build/contact_laws models/contact_laws
+for entry in "${implants[@]}"; do
+  name=${entry%%:*}
+  config=${entry#*:}
+  for m in "${materials[@]}"; do
+    out=build/contact_laws/${name}_$m
+    rm -rf "$out"
+    echo "calibrate_contact_laws: $name $m -> $out" >&2
+    "$kneesim" calibrate-contact $config --material "$m" --out "$out" --no-plots --quiet
+    cp "$out/contact_law.toml" "models/contact_laws/${name}_$m.toml"
+  done
+done

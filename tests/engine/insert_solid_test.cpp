@@ -137,9 +137,9 @@ TEST_CASE("deformable insert: bad config values are refused with one sentence") 
     return "";
   };
   // each names the key, the value and the allowed range
-  const std::string layers = message({"deformable.layers=0"});
+  const std::string layers = message({"deformable.layers=41"});
   CHECK(layers.find("deformable.layers") != std::string::npos);
-  CHECK(layers.find("[1, 20]") != std::string::npos);
+  CHECK(layers.find("[0, 40]") != std::string::npos);
   const std::string size = message({"deformable.element_size_mm=0"});
   CHECK(size.find("deformable.element_size_mm") != std::string::npos);
   const std::string kind = message({"insert=solid"});

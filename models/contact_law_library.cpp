@@ -204,13 +204,22 @@ std::string specified_law_warning(const Config& c) {
       ++n;
     }
     if (n > 0) {
+      // "+87 %" from one law, "+5 to +87 %" from several
+      auto range = [](double lo, double hi) {
+        char r[64];
+        if (std::lround(lo) == std::lround(hi)) {
+          std::snprintf(r, sizeof r, "%+.0f %%", lo);
+        } else {
+          std::snprintf(r, sizeof r, "%+.0f to %+.0f %%", lo, hi);
+        }
+        return std::string(r);
+      };
       char buf[512];
       std::snprintf(buf, sizeof buf,
                     "contact law as specified: K = (1-nu)E/((1+nu)(1-2nu)) "
-                    "= %.0f MPa; against the deformable insert, pressures of this law ran %+.0f to "
-                    "%+.0f %% (stance peak) and %+.0f to %+.0f %% (stance mean) for %s on the shipped "
-                    "implants",
-                    k, peak_lo, peak_hi, mean_lo, mean_hi,
+                    "= %.0f MPa; against the deformable insert, pressures of this law ran %s "
+                    "(stance peak) and %s (stance mean) for %s on the shipped implants",
+                    k, range(peak_lo, peak_hi).c_str(), range(mean_lo, mean_hi).c_str(),
                     same_material ? c.material.name.c_str() : "the shipped materials");
       return buf;
     }

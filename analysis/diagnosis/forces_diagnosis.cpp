@@ -53,7 +53,8 @@ ForcesDiagnosisReport diagnose_forces(const DiagnosisCase& c, ForcesSimulator& s
         if (sim.cycle(j).name == row.group) k = j;
       }
       const auto trace = sim.run(e.effect, e.params[0], k);
-      direct[static_cast<Eigen::Index>(i)] = trace->ok ? trace->at(true, row.x) : NAN;
+      // the surrogate's own model: the simulated medial share of the measured total
+      direct[static_cast<Eigen::Index>(i)] = trace->ok ? trace->share(row.x) * total_N[i] : NAN;
     }
     x["surrogate_rms_N"] = rms(direct, e.predictions);
     Eigen::VectorXd y(direct.size());

@@ -131,7 +131,9 @@ TEST_CASE("a failed wear run keeps a partial table; a good run after it leaves n
   const Result failed = run_kneesim(bad, tmp.path);
   INFO("stderr: " << failed.err);
   CHECK(failed.exit_code == 1);
-  CHECK(count_lines(failed.err) == 1);
+  // a 2 MPa material has no calibrated law: the law as specified, said in one warning line
+  CHECK(failed.err.find("warning: no calibrated contact law") != std::string::npos);
+  CHECK(count_lines(without_contact_law_warning(failed.err)) == 1);
   CHECK(failed.err.find("runaway") != std::string::npos);
   CHECK(failed.err.find("no geometry update was completed") != std::string::npos);
   CHECK(fs::exists(out / "summary.failed.json"));

@@ -203,7 +203,9 @@ TEST_CASE("a run that fails numerically leaves no complete-looking result") {
                                tmp.path);
   INFO("stderr: " << r.err);
   CHECK(r.exit_code == 1);  // numerical trouble, not bad input
-  CHECK(count_lines(r.err) == 1);
+  // a 2 MPa material has no calibrated law: the law as specified, said in one warning line
+  CHECK(r.err.find("warning: no calibrated contact law") != std::string::npos);
+  CHECK(count_lines(without_contact_law_warning(r.err)) == 1);
   CHECK(r.err.find("runaway") != std::string::npos);
   CHECK_FALSE(fs::exists(out / "summary.json"));
   CHECK_FALSE(fs::exists(out / "kinematics.csv"));

@@ -274,6 +274,7 @@ nlohmann::json run_wear_job(const WearJob& j) {
   if (!resume) clear_wear_outputs(j.out);
   const models::BuiltModel built = models::build_model(j.config);
   check_output_size(j, built);  // still before the first cycle
+  if (j.on_built) j.on_built(built);
   const bool solid = !built.model.insert_solid.empty();
   const models::MaterialConfig& mat = built.material;
   const double density_mg_per_mm3 = mat.density_g_per_cm3;  // g/cm^3 == mg/mm^3

@@ -36,6 +36,9 @@ struct WearJob {
   std::optional<report::Provenance> report;
   // receives the report's 3D scene (wear depth per update) when set (compare's report)
   report::Scene3D* scene_out = nullptr;
+  // called once the model is built, before the first cycle (the CLI prints the contact law's
+  // fallback warning here, so that input refused while building gets no warning before it)
+  std::function<void(const models::BuiltModel&)> on_built;
 };
 
 // runs the job; returns the summary written to out/summary.json; throws InputError for bad

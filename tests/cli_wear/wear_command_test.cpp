@@ -157,7 +157,7 @@ TEST_CASE("kneesim wear: bad input is one line on stderr and exit 2, nothing wri
       {{"--set", "material.wear_factor_mm3_per_Nmm=1e-5"}, "--allow-any-wear-factor"},
       {{"--set", "material.wear_factor_mm3_per_Nmm=1e-13"}, "--allow-any-wear-factor"},
       // the deformable insert's mesh options are checked before any cycle
-      {{"--set", "insert=deformable", "--set", "deformable.layers=0"}, "deformable.layers"},
+      {{"--set", "insert=deformable", "--set", "deformable.layers=41"}, "deformable.layers"},
   };
   for (const Case& c : cases) {
     std::string joined;

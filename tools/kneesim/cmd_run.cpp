@@ -33,9 +33,6 @@ void run(const RunArgs& a) {
   run::GaitRunJob job;
   job.config = run::load_run_config(a.config, with_no_calibrate(a.sets, a.no_calibrate));
   run::ensure_contact_law(job.config, a.quiet);
-  if (const std::string& w = job.config.contact_law_resolution.warning; !w.empty()) {
-    std::fprintf(stderr, "warning: %s\n", w.c_str());
-  }
   if (a.cycles > 0) job.config.cycles = a.cycles;
   if (!a.measured.empty()) job.config.measured_kinematics = fs::absolute(a.measured).string();
   job.out = a.out;
@@ -45,8 +42,13 @@ void run(const RunArgs& a) {
   job.fe_export = a.export_fe || !a.export_fe_pcts.empty();
   job.fe_export_pcts = a.export_fe_pcts;
   const int cycles = job.config.cycles;
-  if (!a.quiet) {
-    job.on_built = [cycles](const models::BuiltModel& built) {
+  // the contact law's fallback warning once the model is built (a mesh refused while building
+  // is one line)
+  const std::string law_warning = job.config.contact_law_resolution.warning;
+  const bool quiet = a.quiet;
+  job.on_built = [cycles, law_warning, quiet](const models::BuiltModel& built) {
+    if (!law_warning.empty()) std::fprintf(stderr, "warning: %s\n", law_warning.c_str());
+    if (!quiet) {
       const engine::Model& model = built.model;
       std::fprintf(stderr,
                    "kneesim run: %d articular elements, dt %.3g s (%ld steps per cycle, limit "
@@ -60,8 +62,8 @@ void run(const RunArgs& a) {
                      model.insert_solid.num_elements(), model.insert_solid.num_nodes(),
                      model.insert_solid.physical_mass, model.insert_solid.added_mass);
       }
-    };
-  }
+    }
+  };
   // one plotting interpreter for the kinematics and pressure-map plots, loading matplotlib
   // while the cycles run
   std::optional<io::PlotSession> plots;

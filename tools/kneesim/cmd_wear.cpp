@@ -99,9 +99,10 @@ void run(const WearArgs& a) {
   run::WearJob job;
   job.config = models::load_config(a.config, overrides);
   run::ensure_contact_law(job.config, a.quiet);
-  if (const std::string& w = job.config.contact_law_resolution.warning; !w.empty()) {
-    std::fprintf(stderr, "warning: %s\n", w.c_str());
-  }
+  // the fallback warning once the model is built (a mesh refused while building is one line)
+  job.on_built = [w = job.config.contact_law_resolution.warning](const models::BuiltModel&) {
+    if (!w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  };
   job.cycles = a.cycles;
   job.update_every = a.update_every;
   job.schedule = a.schedule;

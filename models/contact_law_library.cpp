@@ -90,6 +90,17 @@ void resolve_contact_law(Config& c) {
     r.warning = specified_law_warning(c);
     return;
   }
+  // a mesh implant whose files are not there yet (a template's placeholders): loading the config
+  // is not refused for it; building the model is, naming the file (source "unresolved")
+  if (c.implant_kind == "mesh") {
+    for (const std::string& mesh : {c.femur_mesh, c.insert_mesh}) {
+      if (!std::filesystem::exists(resolve_path(c, mesh))) {
+        r.source = "unresolved";
+        r.note = resolve_path(c, mesh).string() + ": mesh file not found";
+        return;
+      }
+    }
+  }
   // the key of the reference the config's law is calibrated under (models/contact_law_key.h)
   const ContactLawKey key = make_contact_law_key(make_calibration_config(c));
   r.key = key.key;

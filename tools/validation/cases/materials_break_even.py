@@ -6,11 +6,12 @@ implied ratio (its own volume ratios, not independent) and the published ranges
 of PEEK or CFR-PEEK enters it."""
 TITLE = "Materials: the break-even wear-factor ratio"
 LONG = True
+IMAGES = {"docs/img/compare_break_even.png": "compare_archard/compare_break_even.png"}
 
 def run(v):
     for name, extra in (("archard", []),):
         d = v.kneesim(f"compare_{name}", ["compare", "--materials", "uhmwpe,peek,cfr-peek",
-                                          "--no-plots", "--quiet"] + extra)
+                                          "--quiet"] + extra)
         be = {r["material"]: r for r in v.csv(d, "break_even.csv")}
         for m, k in (("peek", "peek"), ("cfr-peek", "cfrpeek")):
             v.figure(f"{name}_{k}_volume", be[m]["break_even_volume_ratio"], "")

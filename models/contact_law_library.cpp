@@ -90,13 +90,15 @@ void resolve_contact_law(Config& c) {
     r.warning = specified_law_warning(c);
     return;
   }
-  // a mesh implant whose files are not there yet (a template's placeholders): loading the config
-  // is not refused for it; building the model is, naming the file (source "unresolved")
+  // a mesh implant whose files are not there yet (a template's placeholders) or are not files (a
+  // folder): loading the config is not refused for it; building the model is, with the mesh
+  // reader's message naming the file (source "unresolved")
   if (c.implant_kind == "mesh") {
     for (const std::string& mesh : {c.femur_mesh, c.insert_mesh}) {
-      if (!std::filesystem::exists(resolve_path(c, mesh))) {
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(resolve_path(c, mesh), ec)) {
         r.source = "unresolved";
-        r.note = resolve_path(c, mesh).string() + ": mesh file not found";
+        r.note = resolve_path(c, mesh).string() + ": not a readable mesh file";
         return;
       }
     }

@@ -169,7 +169,9 @@ int check_deep_run(const models::BuiltModel& built, wear::WearOptions o, const c
 
 TEST_CASE("deep wear never inverts a face; refinements are reported exactly when needed") {
   SUBCASE("conforming dish: central contact, no refinement needed") {
-    CHECK(check_deep_run(dish_model(), deep_options(dish_model(), 150'000, 50'000), "dish") ==
+    // 200 000 cycles: under the calibrated UHMWPE law (0.35 K) the wider patch reaches 1.9 mm
+    // in 150 000, short of the 2 mm this case is about
+    CHECK(check_deep_run(dish_model(), deep_options(dish_model(), 200'000, 50'000), "dish") ==
           0);
   }
   SUBCASE("narrow groove: wall contact, the loop must refine") {

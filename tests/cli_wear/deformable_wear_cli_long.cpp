@@ -5,7 +5,9 @@
 //  - volume bookkeeping: the hex volume loss against the depth integral within 1 % (the rigid
 //    path's issue-3 acceptance);
 //  - the deformable insert spreads the load: lower peak pressure and a larger contact area than
-//    the rigid insert in the same rig (docs/deformable.md).
+//    the rigid insert with the law as specified (--no-calibrate) in the same rig
+//    (docs/deformable.md; the calibrated default law is fitted to the deformable insert and
+//    matches its area within a few per cent: 99.6 against 97.3 mm^2);
 //  - Archard's volume is k sqrt(1 + 3 mu^2) times the sliding work, which does not depend on
 //    how the pressure spreads: the deformable volume within 10 % of the rigid one's (it was
 //    +42 % before the tray carried the contact forces, engine/insert_solid.h; after, +2.0 %;
@@ -25,7 +27,7 @@ TEST_CASE("deformable wear at the real size: bookkeeping and Archard volume agai
   const fs::path rigid = tmp.path / "rigid", deformable = tmp.path / "deformable";
   const std::vector<std::string> common = {"--quiet", "--cycles", "5000000", "--update-every",
                                            "2500000", "--no-depth-maps"};
-  std::vector<std::string> a = {"wear", "--out", rigid.string()};
+  std::vector<std::string> a = {"wear", "--out", rigid.string(), "--no-calibrate"};
   a.insert(a.end(), common.begin(), common.end());
   const Result r = run_kneesim(a, tmp.path);
   INFO("rigid stderr: " << r.err);

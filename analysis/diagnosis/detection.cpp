@@ -1,11 +1,13 @@
 #include "analysis/diagnosis/detection.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <random>
+#include <thread>
 
 namespace kneesim::diagnosis::detail {
 namespace {
@@ -108,6 +110,20 @@ std::shared_ptr<LinearModel> linearize(const Problem& pb, const Eigen::VectorXd&
     b[j] = from_fitted(s, fitted_space(s, base[j]) + h);
     lm->jb.col(j) = (c.predict(Effect::none, b, none, rows) - lm->f0) / h;
   }
+  if (c.prefetch) {  // every candidate's simulations at once
+    for (Effect e : c.candidates) {
+      const std::vector<ParamSpec> specs = case_effect_params(c, e);
+      const Eigen::VectorXd p0 = null_point(specs);
+      std::vector<Eigen::VectorXd> points = {p0};
+      for (Eigen::Index j = 0; j < p0.size(); ++j) {
+        const ParamSpec& s = specs[static_cast<size_t>(j)];
+        Eigen::VectorXd p = p0;
+        p[j] = from_fitted(s, fitted_space(s, p[j]) + step_of(s, p0[j]));
+        points.push_back(p);
+      }
+      c.prefetch(e, points);
+    }
+  }
   for (Effect e : c.candidates) {
     LinearModel::Candidate cand;
     cand.specs = case_effect_params(c, e);
@@ -130,6 +146,8 @@ std::shared_ptr<LinearModel> linearize(const Problem& pb, const Eigen::VectorXd&
 DiagnosisCase linear_case(const DiagnosisCase& c, std::shared_ptr<const LinearModel> lm) {
   DiagnosisCase lin = c;
   lin.expensive_forward = false;
+  lin.prefetch = nullptr;  // nothing to run ahead: the linear model is evaluated directly
+  lin.fit_control.threads = 1;  // cheap fits: the replicates run side by side instead
   lin.predict = [lm, specs = c.baseline_params](Effect e, const Eigen::VectorXd& b,
                                                 const Eigen::VectorXd& ep,
                                                 const std::vector<int>& rows) {
@@ -228,6 +246,7 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
   DiagnosisCase lin;
   std::unique_ptr<Problem> owned;
   const Problem* pbp = &pb_data;
+  const int threads = std::max(1, pb_data.c.fit_control.threads);
   if (pb_data.c.expensive_forward) {
     out.method = "local linear model of each candidate about its null point";
     lin = linear_case(pb_data.c, linearize(pb_data, base));
@@ -333,25 +352,30 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
         }
         return true;
       };
-      std::vector<double> thresholds;
-      for (int r = 0; r < reps; ++r) {
+      auto threshold = [&](int r) {
         double lo = u_lo, hi = u_hi;
         if (!named(r, hi)) {
-          if (hi >= u_top || !named(r, u_top)) {
-            thresholds.push_back(std::numeric_limits<double>::infinity());
-            continue;
-          }
+          if (hi >= u_top || !named(r, u_top)) return std::numeric_limits<double>::infinity();
           lo = hi, hi = u_top;
         } else if (named(r, lo)) {
-          thresholds.push_back(lo);
-          continue;
+          return lo;
         }
         for (int b = 0; b < kBisections; ++b) {
           const double mid = std::sqrt(lo * hi);
           (named(r, mid) ? hi : lo) = mid;
         }
-        thresholds.push_back(std::sqrt(lo * hi));
-      }
+        return std::sqrt(lo * hi);
+      };
+      // the replicates on `threads` threads (each its own noise draw: the same thresholds)
+      std::vector<double> thresholds(static_cast<size_t>(reps));
+      std::atomic<int> next{0};
+      auto worker = [&] {
+        for (int r = next++; r < reps; r = next++) thresholds[static_cast<size_t>(r)] = threshold(r);
+      };
+      std::vector<std::thread> pool;
+      for (int t = 1; t < std::min(threads, reps); ++t) pool.emplace_back(worker);
+      worker();
+      for (auto& th : pool) th.join();
       std::sort(thresholds.begin(), thresholds.end());
       const size_t k = std::min(thresholds.size() - 1,
                                 static_cast<size_t>(std::ceil(options.detection_rate * reps)) - 1);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <map>
 #include <random>
@@ -112,11 +113,20 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   }
   std::vector<Effect> effects = {Effect::none};
   effects.insert(effects.end(), c.candidates.begin(), c.candidates.end());
-  std::vector<Noise> noises;
-  for (Effect e : effects) {
-    Noise noise;
-    res.candidates.push_back(fit_candidate(pb, pb.y, e, calibrated, options, &noise));
-    noises.push_back(noise);
+  std::vector<Noise> noises(effects.size());
+  res.candidates.resize(effects.size());
+  if (c.fit_control.threads > 1) {  // the candidates' fits side by side, results in order
+    std::vector<std::future<ModelFit>> fits;
+    for (size_t i = 0; i < effects.size(); ++i) {
+      fits.push_back(std::async(std::launch::async, [&, i] {
+        return fit_candidate(pb, pb.y, effects[i], calibrated, options, &noises[i]);
+      }));
+    }
+    for (size_t i = 0; i < effects.size(); ++i) res.candidates[i] = fits[i].get();
+  } else {
+    for (size_t i = 0; i < effects.size(); ++i) {
+      res.candidates[i] = fit_candidate(pb, pb.y, effects[i], calibrated, options, &noises[i]);
+    }
   }
   // the baseline and the trivial predictor carry the error model of the refitted baseline
   // (its nuisance terms fitted on the training rows like every model's)

@@ -103,6 +103,11 @@ struct DiagnosisCase {
                                 const Eigen::VectorXd& effect_params,
                                 const std::vector<int>& rows)>
       predict;
+  // optional: runs the forward model ahead for several effect-parameter vectors (I/O units)
+  // that predict() will be asked for next (a Jacobian's columns, multi-starts, the detection
+  // limit's linearization); a simulation-based case runs them in parallel into its cache. It
+  // must not change any prediction, only when it is computed.
+  std::function<void(Effect effect, const std::vector<Eigen::VectorXd>& effect_params)> prefetch;
   // the practitioner's calibration of the baseline parameters from the `train` rows
   std::function<Eigen::VectorXd(const std::vector<int>& train)> calibrate_baseline;
   // case-specific remarks appended to an effect's model line (fixed parameters, references)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <map>
 #include <random>
 #include <stdexcept>
@@ -389,8 +390,17 @@ FitState fit_clusters(const Problem& pb, const Eigen::VectorXd& y, Effect e,
     }
     return out;
   };
+  PrefetchFn prefetch;
+  if (pb.c.prefetch) {
+    const Eigen::Index nb = static_cast<Eigen::Index>(pb.c.baseline_params.size());
+    prefetch = [&pb, e, nb](const std::vector<Eigen::VectorXd>& points) {
+      std::vector<Eigen::VectorXd> effect_params;
+      for (const auto& p : points) effect_params.push_back(p.tail(p.size() - nb));
+      pb.c.prefetch(e, effect_params);
+    };
+  }
   FitState s;
-  s.fit = fit_least_squares(residuals, specs, start, multi, pb.c.fit_control);
+  s.fit = fit_least_squares(residuals, specs, start, multi, pb.c.fit_control, prefetch);
   s.eval = evaluate(pb, y, e, s.fit.params, clusters, wh, noise);
   return s;
 }
@@ -487,11 +497,24 @@ Eigen::VectorXd heldout_predictions(const Problem& pb, const Eigen::VectorXd& y,
                                     const std::vector<ParamSpec>& specs,
                                     const Eigen::VectorXd& start, const Noise& noise) {
   Eigen::VectorXd out = Eigen::VectorXd::Constant(y.size(), NAN);
-  for (const Fold& f : pb.c.folds) {
+  auto fold_prediction = [&](const Fold& f) {
     const FitState fs = fit_clusters(pb, y, e, specs, start, clusters_of(pb, f.train), noise, false);
     Eigen::VectorXd p = predict(pb, e, fs.fit.params, f.test);
-    p = heldout_with_nuisance(pb, y, f.test, p, fs.eval.beta, noise);
-    for (size_t i = 0; i < f.test.size(); ++i) out[f.test[i]] = p[static_cast<Eigen::Index>(i)];
+    return heldout_with_nuisance(pb, y, f.test, p, fs.eval.beta, noise);
+  };
+  const auto& folds = pb.c.folds;
+  std::vector<Eigen::VectorXd> preds(folds.size());
+  if (pb.c.fit_control.threads > 1 && folds.size() > 1) {  // the folds' fits side by side
+    std::vector<std::future<Eigen::VectorXd>> runs;
+    for (const Fold& f : folds) {
+      runs.push_back(std::async(std::launch::async, [&fold_prediction, &f] { return fold_prediction(f); }));
+    }
+    for (size_t k = 0; k < folds.size(); ++k) preds[k] = runs[k].get();
+  } else {
+    for (size_t k = 0; k < folds.size(); ++k) preds[k] = fold_prediction(folds[k]);
+  }
+  for (size_t k = 0; k < folds.size(); ++k) {
+    for (size_t i = 0; i < folds[k].test.size(); ++i) out[folds[k].test[i]] = preds[k][static_cast<Eigen::Index>(i)];
   }
   return out;
 }

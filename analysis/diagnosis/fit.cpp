@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 
 namespace kneesim::diagnosis {
@@ -29,7 +30,8 @@ double sum_sq(const Eigen::VectorXd& r) {
 }
 
 FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>& specs,
-                              const Eigen::VectorXd& start, const FitControl& control) {
+                              const Eigen::VectorXd& start, const FitControl& control,
+                              const PrefetchFn& prefetch) {
   const Eigen::Index n = start.size();
   Eigen::VectorXd z(n);
   for (Eigen::Index i = 0; i < n; ++i) z[i] = to_z(specs[i], start[i]);
@@ -44,16 +46,22 @@ FitResult levenberg_marquardt(const ResidualsFn& f, const std::vector<ParamSpec>
     return out;
   }
   for (int iter = 0; iter < control.max_iterations && std::isfinite(cost); ++iter) {
-    // forward-difference Jacobian in z
+    // forward-difference Jacobian in z (its points handed to the forward model at once)
     Eigen::MatrixXd jac(r.size(), n);
+    std::vector<Eigen::VectorXd> points;
+    Eigen::VectorXd steps(n);
     for (Eigen::Index j = 0; j < n; ++j) {
-      const double h = control.coarse_jacobian
-                           ? coarse_difference_step(specs[static_cast<size_t>(j)],
-                                                    from_z(specs[static_cast<size_t>(j)], z[j]))
-                           : 1e-6 * std::max(1.0, std::abs(z[j]));
+      steps[j] = control.coarse_jacobian
+                     ? coarse_difference_step(specs[static_cast<size_t>(j)],
+                                              from_z(specs[static_cast<size_t>(j)], z[j]))
+                     : 1e-6 * std::max(1.0, std::abs(z[j]));
       Eigen::VectorXd zj = z;
-      zj[j] += h;
-      jac.col(j) = (f(params_of(specs, zj)) - r) / h;
+      zj[j] += steps[j];
+      points.push_back(params_of(specs, zj));
+    }
+    if (prefetch) prefetch(points);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      jac.col(j) = (f(points[static_cast<size_t>(j)]) - r) / steps[j];
       ++out.evaluations;
     }
     const Eigen::MatrixXd jtj = jac.transpose() * jac;
@@ -104,7 +112,7 @@ double coarse_difference_step(const ParamSpec& s, double value) {
 
 FitResult fit_least_squares(const ResidualsFn& residuals, const std::vector<ParamSpec>& specs,
                             const Eigen::VectorXd& initial, bool multi_start,
-                            const FitControl& control) {
+                            const FitControl& control, const PrefetchFn& prefetch) {
   std::vector<Eigen::VectorXd> starts = {initial};
   if (multi_start) {
     for (size_t i = 0; i < specs.size(); ++i) {
@@ -121,8 +129,22 @@ FitResult fit_least_squares(const ResidualsFn& residuals, const std::vector<Para
   FitResult best;
   best.rss = std::numeric_limits<double>::infinity();
   int evaluations = 0;
-  for (const auto& s : starts) {
-    FitResult r = levenberg_marquardt(residuals, specs, s, control);
+  if (prefetch && starts.size() > 1) prefetch(starts);
+  std::vector<FitResult> results(starts.size());
+  if (control.threads > 1 && starts.size() > 1) {
+    std::vector<std::future<FitResult>> runs;
+    for (const auto& s : starts) {
+      runs.push_back(std::async(std::launch::async, [&, s] {
+        return levenberg_marquardt(residuals, specs, s, control, prefetch);
+      }));
+    }
+    for (size_t i = 0; i < runs.size(); ++i) results[i] = runs[i].get();
+  } else {
+    for (size_t i = 0; i < starts.size(); ++i) {
+      results[i] = levenberg_marquardt(residuals, specs, starts[i], control, prefetch);
+    }
+  }
+  for (const FitResult& r : results) {  // in the order of the starts
     evaluations += r.evaluations;
     if (r.rss < best.rss || best.params.size() == 0) best = r;
   }

@@ -40,6 +40,10 @@ struct FitControl {
   // parameter's effect; the kinematics rig's AP moves by 0.5 um RMS per 1e-6 of friction,
   // 16 times the slope between friction 0.02 and 0.07)
   bool coarse_jacobian = false;
+  // above 1: independent fits (multi-starts, held-out folds, candidates) run side by side, for
+  // a forward model that limits its own parallel simulations (DiagnosisCase::prefetch), and the
+  // detection-limit replicates on this many threads; every result is the same as in sequence
+  int threads = 1;
 };
 
 // a difference step inside the bounds in the fitted space, large against a simulation's
@@ -47,10 +51,15 @@ struct FitControl {
 // upper bound); the detection limits' linearisation uses the same step
 double coarse_difference_step(const ParamSpec& s, double value);
 
+// runs the forward model at several parameter vectors [I/O units] ahead of the sequential
+// evaluations that follow (a forward model that caches and runs simulations in parallel);
+// must not change any result, only when it is computed
+using PrefetchFn = std::function<void(const std::vector<Eigen::VectorXd>& params)>;
+
 // minimises |r(params)|^2 from `initial`, plus every combination of the specs' extra starts
 // when `multi_start`
 FitResult fit_least_squares(const ResidualsFn& residuals, const std::vector<ParamSpec>& specs,
                             const Eigen::VectorXd& initial, bool multi_start,
-                            const FitControl& control = {});
+                            const FitControl& control = {}, const PrefetchFn& prefetch = {});
 
 }  // namespace kneesim::diagnosis

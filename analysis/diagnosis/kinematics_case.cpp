@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
 #include "analysis/diagnosis/measured_csv.h"
@@ -183,6 +184,11 @@ DiagnosisCase make_kinematics_case(MeasuredData data, std::shared_ptr<Kinematics
   // bound per step (engine/implicit_friction.h), so a change of 1e-6 in mu moves the trace by
   // the stick/slip branches it flips, not by its effect (fit.h)
   c.fit_control.coarse_jacobian = true;
+  // fits side by side (the simulator limits the simulations running at a time)
+  c.fit_control.threads = sim->threads();
+  c.prefetch = [sim](Effect e, const std::vector<Eigen::VectorXd>& params) {
+    sim->run_many(e, params);
+  };
   c.split_rule = "2-fold cross-validation by gait phase (fit on stance 0-" +
                  std::to_string(static_cast<int>(split)) + " %, predict swing; fit on swing, "
                  "predict stance)";

@@ -1,9 +1,11 @@
 #include "analysis/diagnosis/kinematics_sim.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <thread>
 
 #include "analysis/diagnosis/text_format.h"
 #include "engine/simulate.h"
@@ -13,7 +15,6 @@ namespace kneesim::diagnosis {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
-constexpr size_t kCacheLimit = 512;
 
 }  // namespace
 
@@ -53,17 +54,86 @@ double KinematicsSimulator::nominal_gap_mm() const {
   return 0.0;
 }
 
-std::shared_ptr<const KinematicsTrace> KinematicsSimulator::run(Effect effect,
-                                                                const Eigen::VectorXd& params) {
+std::vector<double> KinematicsSimulator::key_of(Effect effect, const Eigen::VectorXd& params) const {
   std::vector<double> key = {static_cast<double>(effect)};
   if (effect == Effect::friction || effect == Effect::restraint ||
       effect == Effect::load_convention) {
     key.insert(key.end(), params.data(), params.data() + params.size());
   }
-  if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
-  const auto t0 = std::chrono::steady_clock::now();
+  return key;
+}
 
-  engine::Model& model = built_.model;
+std::shared_ptr<const KinematicsTrace> KinematicsSimulator::run(Effect effect,
+                                                                const Eigen::VectorXd& params) {
+  return run_many(effect, {params}).front();
+}
+
+std::vector<std::shared_ptr<const KinematicsTrace>> KinematicsSimulator::run_many(
+    Effect effect, const std::vector<Eigen::VectorXd>& params) {
+  std::vector<std::vector<double>> keys;
+  for (const auto& p : params) keys.push_back(key_of(effect, p));
+  std::vector<size_t> mine;  // indices of the keys this call simulates
+  {
+    std::lock_guard lock(mutex_);
+    for (size_t i = 0; i < keys.size(); ++i) {
+      if (cache_.count(keys[i]) || running_.count(keys[i])) continue;
+      running_.insert(keys[i]);
+      mine.push_back(i);
+    }
+  }
+  // this call's simulations, at most `threads` at a time over all callers: a worker takes an
+  // idle Model copy (or makes one while fewer than `threads` exist) and waits when there is none
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (size_t k = next++; k < mine.size(); k = next++) {
+      std::unique_ptr<engine::Model> model;
+      {
+        std::unique_lock lock(mutex_);
+        done_.wait(lock, [&] { return !idle_models_.empty() || models_made_ < threads_; });
+        if (idle_models_.empty()) {
+          ++models_made_;
+          lock.unlock();
+          model = std::make_unique<engine::Model>(built_.model);
+          // simulations run side by side: one thread each (the contact loop's result does
+          // not depend on its thread count)
+          if (threads_ > 1) model->threads = 1;
+        } else {
+          model = std::move(idle_models_.back());
+          idle_models_.pop_back();
+        }
+      }
+      const auto t0 = std::chrono::steady_clock::now();
+      auto trace = simulate(*model, effect, params[mine[k]]);
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      {
+        std::lock_guard lock(mutex_);
+        idle_models_.push_back(std::move(model));
+        cache_[keys[mine[k]]] = std::move(trace);
+        running_.erase(keys[mine[k]]);
+        ++simulations_;
+        seconds_ += seconds;
+      }
+      done_.notify_all();
+    }
+  };
+  std::vector<std::thread> pool;
+  const int helpers = std::min<int>(threads_, static_cast<int>(mine.size())) - 1;
+  for (int t = 0; t < helpers; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& th : pool) th.join();
+  // the keys other callers were simulating
+  std::unique_lock lock(mutex_);
+  done_.wait(lock, [&] {
+    return std::all_of(keys.begin(), keys.end(), [&](const auto& k) { return cache_.count(k) > 0; });
+  });
+  std::vector<std::shared_ptr<const KinematicsTrace>> out;
+  for (const auto& k : keys) out.push_back(cache_.at(k));
+  return out;
+}
+
+std::shared_ptr<const KinematicsTrace> KinematicsSimulator::simulate(
+    engine::Model& model, Effect effect, const Eigen::VectorXd& params) const {
   model.contact.friction = friction0_;
   model.restraint = restraint0_;
   model.gait = gait0_;
@@ -108,10 +178,6 @@ std::shared_ptr<const KinematicsTrace> KinematicsSimulator::run(Effect effect,
     trace->ap_mm.push_back(f.joint.ap * 1e3);
     trace->ie_deg.push_back(f.joint.ie * kRadToDeg);
   }
-  ++simulations_;
-  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (cache_.size() >= kCacheLimit) cache_.clear();
-  cache_[key] = trace;
   return trace;
 }
 

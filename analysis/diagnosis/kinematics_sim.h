@@ -13,12 +13,24 @@
 //
 // Every evaluation is a full simulation (config.cycles gait cycles), so results are cached by
 // (effect, parameters): the diagnosis asks for the same parameters for several row subsets
-// (folds, offsets). The time step is kept: the restraint is 3-4 orders softer than the contact,
-// and friction is bounded (0-0.3) so the regularized Coulomb slope stays stable.
+// (folds, offsets). The simulator is thread-safe: fits running side by side share its cache,
+// and at most `threads` simulations run at a time, each on its own copy of the Model; a
+// simulation depends only on its effect and parameters, so every result is bit-identical for
+// any thread count. Every evaluation starts from the initial state: the rig's last cycle
+// depends on where it started (run one cycle from the configured rig's settled state instead,
+// the DM rig's last cycle differs by up to 3.6 mm AP or deg IE from the fresh run's, whose own
+// last cycle is periodic to 0.002; tests/diagnosis_knee/kinematics_sim_long.cpp), so a settled
+// start is not a cheaper equivalent. The time step is kept: the restraint is 3-4
+// orders softer than the contact, and friction is bounded (0-0.3) so the regularized Coulomb
+// slope stays stable.
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <condition_variable>
 #include <map>
+#include <mutex>
+#include <set>
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,6 +57,13 @@ class KinematicsSimulator {
 
   // the trace of `effect` with its parameters [I/O units] (none: the config as it is)
   std::shared_ptr<const KinematicsTrace> run(Effect effect, const Eigen::VectorXd& params);
+  // runs every (effect, parameters) not cached yet, at most `threads` simulations at a time
+  // (over all callers), and returns the traces in the order of `params`
+  std::vector<std::shared_ptr<const KinematicsTrace>> run_many(
+      Effect effect, const std::vector<Eigen::VectorXd>& params);
+  // simulations run at a time (set before the first run) [-]
+  void set_threads(int threads) { threads_ = std::max(1, threads); }
+  int threads() const { return threads_; }
 
   // `kneesim run` overrides that reproduce run(effect, params)
   std::string equivalent_sets(Effect effect, const Eigen::VectorXd& params) const;
@@ -55,7 +74,7 @@ class KinematicsSimulator {
   double nominal_friction() const { return friction0_; }
   double nominal_gap_mm() const;
   int simulations() const { return simulations_; }   // evaluations not served by the cache
-  double seconds() const { return seconds_; }          // wall time of those evaluations [s]
+  double seconds() const { return seconds_; }  // wall time of those evaluations, summed [s]
   double build_seconds() const { return build_seconds_; }  // model build [s]
 
  private:
@@ -69,7 +88,16 @@ class KinematicsSimulator {
     double scale = 1.0;         // as built [SI per channel unit]
   };
   std::vector<ForceDof> ap_force_dofs_, ie_torque_dofs_;  // DOFs driven by those channels
+  std::shared_ptr<const KinematicsTrace> simulate(engine::Model& model, Effect effect,
+                                                  const Eigen::VectorXd& params) const;
+  std::vector<double> key_of(Effect effect, const Eigen::VectorXd& params) const;
+  std::mutex mutex_;                  // guards everything below
+  std::condition_variable done_;      // a simulation finished
   std::map<std::vector<double>, std::shared_ptr<const KinematicsTrace>> cache_;
+  std::set<std::vector<double>> running_;
+  std::vector<std::unique_ptr<engine::Model>> idle_models_;  // copies of the built Model
+  int models_made_ = 0;
+  int threads_ = 1;
   int simulations_ = 0;
   double seconds_ = 0.0;
   double build_seconds_ = 0.0;

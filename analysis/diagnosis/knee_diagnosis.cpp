@@ -172,6 +172,10 @@ KneeWearDiagnosisReport run_knee_wear_diagnosis(const KneeWearDiagnosisOptions& 
 
 KinematicsDiagnosisReport run_kinematics_diagnosis(const KinematicsDiagnosisOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
+  if (o.threads < 1 || o.threads > 256) {
+    throw InputError("command line: --threads = " + std::to_string(o.threads) +
+                     " is outside the allowed range [1, 256].");
+  }
   if (!(o.stance_end_pct > 0.0 && o.stance_end_pct < 100.0)) {
     throw InputError("command line: --stance-end-pct = " + std::to_string(o.stance_end_pct) +
                      " is outside the allowed range (0, 100).");
@@ -196,6 +200,7 @@ KinematicsDiagnosisReport run_kinematics_diagnosis(const KinematicsDiagnosisOpti
   auto data = read_kinematics_measured(o.measured,
                                                   femoral_reference_point(config));
   auto sim = std::make_shared<KinematicsSimulator>(config);
+  sim->set_threads(o.threads);
   KinematicsCaseOptions ko;
   ko.stance_end_pct = o.stance_end_pct;
   const auto c = make_kinematics_case(std::move(data), sim, ko);
@@ -207,7 +212,8 @@ KinematicsDiagnosisReport run_kinematics_diagnosis(const KinematicsDiagnosisOpti
                    " (AP force, IE torque and axial force from the gait file).\n\n" +
                    std::to_string(sim->simulations()) +
                    " rig simulations of " + std::to_string(config.cycles) + " gait cycles each (" +
-                   fmt("%.1f", sim->seconds()) + " s; model build " +
+                   fmt("%.1f", sim->seconds()) + " s wall, " + std::to_string(o.threads) +
+                   " at a time; model build " +
                    fmt("%.1f", sim->build_seconds()) + " s; total " +
                    fmt("%.1f", seconds_since(t0)) + " s; bootstrap " +
                    std::to_string(options.bootstrap) + " resamples).\n";

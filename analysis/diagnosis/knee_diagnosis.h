@@ -39,6 +39,7 @@ struct KinematicsDiagnosisOptions {
   std::string measured, config;  // CSV or .sto, and TOML paths
   std::vector<std::string> sets; // key=value overrides
   double stance_end_pct = 60.0;  // end of stance in the phase split [%]
+  int threads = 2;               // rig simulations run at a time [-]
   DiagnosisOptions options;      // multi_start included
   std::string out = "kneesim-diagnose-kinematics";
 };

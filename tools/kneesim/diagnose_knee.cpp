@@ -105,6 +105,9 @@ void add_diagnose_kinematics(CLI::App* diagnose) {
                   "gait % that ends stance in the phase split")->capture_default_str();
   cmd->add_flag("--multi-start", opt->multi_start,
                 "multi-start the full-data fits (about three times the simulations)");
+  cmd->add_option("--threads", opt->run.threads,
+                  "rig simulations run at a time (results do not depend on it)")
+      ->capture_default_str();
   add_diagnose_common_options(cmd, opt->common);
   add_no_calibrate_flag(cmd, opt->no_calibrate);
   cmd->callback([opt] {

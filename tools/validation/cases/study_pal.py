@@ -3,6 +3,10 @@ the kinematics, the 300-trial Monte Carlo of 5 Mc wear (10 geometry updates per 
 advanced mean value method (AMV) against both."""
 TITLE = "Probabilistic study against Pal 2008"
 LONG = True  # 1000 kinematics trials, 300 wear trials and 24 AMV wear runs: 5-15 minutes on 2 cores
+# the section's plots, copied from the runs (docs/validation.md#probabilistic-study-against-pal-2008)
+IMAGES = {"docs/img/study_envelopes.png": "mc1000/envelopes.png",
+          "docs/img/study_sensitivity.png": "mc1000/sensitivity.png",
+          "docs/img/study_wear_envelopes.png": "mc300_wear/wear_envelopes.png"}
 
 KIN = ("ap_rom_mm", "ie_rom_deg", "peak_pressure_MPa")
 WEAR = ("max_linear_wear_mm", "gravimetric_wear_mg")

@@ -117,6 +117,16 @@ struct WearResult {
 // depth-integral volume (exactly so while the geometry is the pristine one)
 double calc_run_wear_potential(const std::vector<UpdateRecord>& records, const WearLawParams& law);
 
+// the time step of the next wear cycle [s]: the current one (model.dt), shortened to dt_safety
+// of the stability limit at the contact frequency omega_max [rad/s] (the loop passes the
+// highest one the last completed cycle met times an allowance for the stiffening the next
+// update brings), in whole steps per gait cycle; never lengthened. Continuous in omega_max, so
+// that a run's result does not jump when a wear factor (or anything else) moves the worn
+// geometry's stiffness by a hair: a threshold here changes the step of every later cycle by a
+// finite amount, and a cycle's wear potential moves with the step (pristine CFR-PEEK insert,
+// stanmore rig: 59076 N mm at solver.dt_safety 0.8, 59538 at 0.4, 59948 at 0.2).
+double next_cycle_step(const engine::Model& model, double omega_max, double dt_safety);
+
 // the interval of update number u (0-based)
 long update_interval(const WearOptions& options, int u);
 

@@ -67,7 +67,8 @@ double CsvTable::number(size_t row, int col, double lo, double hi) const {
   const std::string where = source + ": row " + std::to_string(lines[row]) + ", column " +
                             header[static_cast<size_t>(col)] + ": ";
   if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
-    throw InputError(where + "'" + text + "' is not a number.");
+    throw InputError(where + "'" + text + "' is not a number" + loads::decimal_comma_hint(text) +
+                     ".");
   }
   if (v < lo || v > hi) {
     char buf[160];
@@ -87,12 +88,14 @@ CsvTable read_csv_table(const std::string& path) {
   CsvTable t;
   t.source = path;
   std::string line;
+  std::string header_line;
   int line_no = 0;
   while (std::getline(in, line)) {
     ++line_no;
     if (line_no == 1) loads::strip_utf8_bom(line);
     if (trim(line).empty() || trim(line)[0] == '#') continue;
     if (t.header.empty()) {
+      header_line = line;
       t.header = split(line);
       continue;
     }
@@ -100,7 +103,9 @@ CsvTable read_csv_table(const std::string& path) {
     if (cells.size() != t.header.size()) {
       throw InputError(path + ": row " + std::to_string(line_no) + " has " +
                        std::to_string(cells.size()) + " fields but the header has " +
-                       std::to_string(t.header.size()) + ".");
+                       std::to_string(t.header.size()) +
+                       loads::separator_hint(header_line, line, t.header.size(), cells.size()) +
+                       ".");
     }
     t.cells.push_back(std::move(cells));
     t.lines.push_back(line_no);

@@ -39,6 +39,17 @@ TextTable read_text_table(const std::filesystem::path& file, TextFormat format);
 // "CSV UTF-8" files; true when one was removed. Readers call it on the first line only.
 bool strip_utf8_bom(std::string& first_line);
 
+// Why a data row of a comma-separated table has `row_cells` cells against the header's
+// `header_cells`, when its text shows a likely cause: another separator (';', tab, '|') with
+// decimal commas, or more cells than the header's (a decimal comma splits 0,5 in two). Returns a
+// parenthesised clause to append to the message, or "" when the text shows neither.
+std::string separator_hint(const std::string& header_line, const std::string& row_line,
+                           std::size_t header_cells, std::size_t row_cells);
+
+// " (a decimal comma? write 0.5)" when `text` is a number written with a decimal comma,
+// otherwise ""
+std::string decimal_comma_hint(const std::string& text);
+
 // a path as it should appear in messages
 std::string display_path(const std::filesystem::path& file);
 

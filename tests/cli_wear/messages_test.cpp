@@ -1,7 +1,9 @@
 // One clear sentence for the unclear cases of issue-28 item 5 (docs/robustness.md): each input
 // below is refused with exit 2 (or, for a user material missing properties, runs and says
 // which defaults it took) naming the file and line, key or flag, the value and the allowed
-// range, never a raw library text ("Could not convert", assimp's words, "rows , ...").
+// range, never a raw library text ("Could not convert", assimp's words, "rows , ..."); a decimal
+// comma or another separator in a measured table is named; every numeric option of every
+// command (item 4) refuses a non-number and a value out of range with its range.
 #include <doctest/doctest.h>
 
 #include <cstdint>
@@ -100,12 +102,31 @@ TEST_CASE("whole-number options say the range; --convergence names itself") {
 TEST_CASE("tables, gait file and user materials") {
   REQUIRE(!find_kneesim().empty());
   TempDir tmp;
-  // a spreadsheet that writes ';' between cells (whole numbers here: a decimal comma in a row
-  // is reported as that row's field count, without the separator)
+  // a spreadsheet that writes ';' between cells (whole numbers: the header has no column)
   spit(tmp.path / "semi.csv", "load_N;cycles;volume_mm3\n225;0;0\n225;50000;1\n");
   refused(run_kneesim({"diagnose", "bor", "--measured", (tmp.path / "semi.csv").string(), "--out",
                        (tmp.path / "d1").string()}, tmp.path, "semi"),
           {"semi.csv: row 1 (header) has no column 'load_N'", "separated by ';', not ','"});
+  // ... and with decimal commas in a row: the row, the separator and the number
+  spit(tmp.path / "semidec.csv", "load_N;cycles;volume_mm3\n225;0;0\n225;50000;0,5\n");
+  refused(run_kneesim({"diagnose", "bor", "--measured", (tmp.path / "semidec.csv").string(),
+                       "--out", (tmp.path / "d3").string()}, tmp.path, "semidec"),
+          {"semidec.csv: row 3 has 2 fields but the header has 1 (the file looks separated by ';' "
+           "with decimal commas ('0,5')"});
+  // a decimal comma in a comma-separated row: the row and the likely decimal comma
+  spit(tmp.path / "dec.csv", "load_N,cycles,volume_mm3\n225,0,0\n225,50000,0,5\n");
+  refused(run_kneesim({"diagnose", "bor", "--measured", (tmp.path / "dec.csv").string(), "--out",
+                       (tmp.path / "d4").string()}, tmp.path, "dec"),
+          {"dec.csv: row 3 has 4 fields but the header has 3 (likely a decimal comma"});
+  // measured kinematics of `run --measured`: a ';' header and a decimal comma in a row
+  spit(tmp.path / "kin_semi.csv", "gait_pct;ap_mm;ie_deg\n0;0;0\n50;1,5;2\n");
+  refused(run_kneesim({"run", "--measured", (tmp.path / "kin_semi.csv").string(), "--out",
+                       (tmp.path / "k1").string(), "--quiet"}, tmp.path, "kin_semi"),
+          {"kin_semi.csv: line 1 (header) 'gait_pct;ap_mm;ie_deg' is separated by ';', not ','"});
+  spit(tmp.path / "kin_dec.csv", "gait_pct,ap_mm,ie_deg\n0,0,0\n50,1,5,2\n");
+  refused(run_kneesim({"run", "--measured", (tmp.path / "kin_dec.csv").string(), "--out",
+                       (tmp.path / "k2").string(), "--quiet"}, tmp.path, "kin_dec"),
+          {"kin_dec.csv: line 3 has 4 cells but the header has 3 columns (likely a decimal comma"});
   // every volume at cycle 0: nothing to calibrate
   spit(tmp.path / "zero.csv", "load_N,cycles,volume_mm3\n225,0,0\n225,0,0.1\n130,0,0\n");
   const Result z = run_kneesim({"diagnose", "bor", "--measured", (tmp.path / "zero.csv").string(),
@@ -131,4 +152,55 @@ TEST_CASE("tables, gait file and user materials") {
                    "defaults (UHMWPE against CoCr) poisson = 0.47, friction = 0.07") !=
         std::string::npos);
   CHECK(m.err.find("wear_factor_mm3_per_Nmm = 2.643e-10") != std::string::npos);
+}
+
+TEST_CASE("every numeric option refuses a non-number or a value out of range, naming both") {
+  // reference: the ranges in each command's --help and docs/robustness.md; every refusal comes
+  // before any work (none of these runs a simulation)
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  spit(tmp.path / "bor.csv", "load_N,cycles,volume_mm3\n225,0,0\n225,50000,1\n225,100000,2\n");
+  const std::string bor_csv = (tmp.path / "bor.csv").string();
+  const std::string out = (tmp.path / "o").string();
+  struct Case {
+    std::vector<std::string> args;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {{"bor", "--update-every", "-1"}, "--update-every: value '-1' is not in the allowed range 1 to 1000000000"},
+      {{"bor", "--fe-element-mm", "abc"}, "--fe-element-mm: value 'abc' is not a finite number; allowed: [0.02, 1] mm"},
+      {{"bor", "--fe-element-mm", "5"}, "--fe-element-mm = 5 mm is outside the allowed range [0.02, 1] mm"},
+      {{"bor", "--fe-max-steps", "nan"}, "--fe-max-steps: value 'nan' is not a whole number; allowed: a whole number 100 to 100000000"},
+      {{"bor", "--threads", "1.5"}, "--threads: value '1.5' is not a whole number; allowed: a whole number 1 to 64"},
+      {{"bor", "--load-N", "abc"}, "--load-N: value 'abc' is not a finite number; allowed: (0, 10000] N"},
+      {{"bor", "--ring-diameter-mm", "-1"}, "--ring-diameter-mm = -1 is outside the allowed range (0, 2000] mm"},
+      {{"bor", "--friction", "abc"}, "--friction: value 'abc' is not a finite number; allowed: [0, 2]"},
+      {{"bor", "--poisson", "0.5"}, "--poisson = 0.5 is outside the allowed range (-1, 0.4999]"},
+      {{"bor", "--ring-width-mm", "20"}, "--ring-width-mm = 20 exceeds --block-width-mm = 12"},
+      {{"diagnose", "bor", "--measured", bor_csv, "--bootstrap", "nan"}, "--bootstrap: value 'nan' is not a whole number; allowed: a whole number 0 to 100000"},
+      {{"diagnose", "bor", "--measured", bor_csv, "--seed", "-1"}, "--seed: value '-1' is not in the allowed range 0 to 9007199254740991"},
+      {{"diagnose", "bor", "--measured", bor_csv, "--ic-threshold", "x"}, "--ic-threshold: value 'x' is not a finite number; allowed: [0, 1000]"},
+      {{"diagnose", "bor", "--measured", bor_csv, "--block-height-mm", "0"}, "--block-height-mm = 0 is outside the allowed range (0, 1000] mm"},
+      {{"diagnose", "forces", "--grid-points", "x"}, "--grid-points: value 'x' is not a whole number; allowed: a whole number 4 to 41"},
+      {{"diagnose", "kinematics", "--measured", bor_csv, "--config", bor_csv, "--stance-end-pct", "abc"}, "--stance-end-pct: value 'abc' is not a finite number; allowed: (0, 100) %"},
+      {{"study", "--seed", "-1"}, "--seed: value '-1' is not in the allowed range 0 to 9007199254740991"},
+      {{"study", "--trials", "1e3"}, "--trials: value '1e3' is not a whole number (write 1000); allowed: a whole number 2 to 10000000"},
+      {{"study", "--wear", "--wear-cycles", "abc"}, "--wear-cycles: value 'abc' is not a whole number; allowed: a whole number 1 to 1000000000"},
+      {{"study", "--wear", "--wear-updates", "0"}, "--wear-updates: value '0' is not in the allowed range 1 to 1000"},
+      {{"run", "--cycles", "1e3"}, "--cycles: value '1e3' is not a whole number (write 1000); allowed: a whole number 1 to 1000000"},
+      {{"run", "--export-fe-pcts", "abc"}, "--export-fe-pcts: value 'abc' is not a number in the allowed range 0 to 99.999"},
+      {{"compare", "--jobs", "1.5"}, "--jobs: value '1.5' is not a whole number; allowed: a whole number 1 to 1024"},
+      {{"particles", "--max-iterations", "2.5"}, "--max-iterations: value '2.5' is not a whole number; allowed: a whole number 1 to 1000000"},
+  };
+  int i = 0;
+  for (const Case& c : cases) {
+    std::vector<std::string> args = c.args;
+    args.push_back("--out");
+    args.push_back(out);
+    args.back() += std::to_string(i);
+    CAPTURE(args[0] + " " + args[1] + " " + args[2]);
+    std::string tag = "n";
+    tag += std::to_string(i++);
+    refused(run_kneesim(args, tmp.path, tag), {c.says});
+  }
 }

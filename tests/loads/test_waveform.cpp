@@ -250,3 +250,34 @@ TEST_CASE("delay_channels: the delayed channel at p is the original at p - d, pe
   // the peak moves by the delay
   CHECK(d.value(d.channel("ap_force_N"), 18.0) == doctest::Approx(-265.0).epsilon(1e-6));
 }
+
+TEST_CASE("a table from a decimal-comma spreadsheet names the separator or the decimal comma") {
+  // reference: the text of the files; a decimal comma splits 0,5 into two cells, a ';'- or
+  // tab-separated header is one cell, and 0,5 in a tab-separated (.sto-like) cell is no number
+  CHECK(load_error("gait_pct,a_N\n0,1\n50,2,5\n")
+            .find(": line 3 has 3 cells but the header has 2 columns (likely a decimal comma: 1 "
+                  "more comma(s) than the header's; a number written 0,5 is read as two values; "
+                  "kneesim reads comma-separated values with a decimal point, e.g. 0.5, not 0,5).") !=
+        std::string::npos);
+  CHECK(load_error("gait_pct;a_N\n0;1\n50;2,5\n")
+            .find(": line 1 (header) 'gait_pct;a_N' is separated by ';', not ','; kneesim reads "
+                  "comma-separated values with a decimal point, e.g. 0.5, not 0,5.") !=
+        std::string::npos);
+  CHECK(load_error("gait_pct\ta_N\n0\t1\n").find("is separated by tabs, not ','") !=
+        std::string::npos);
+  // fewer cells than the header: no decimal comma to suspect
+  CHECK(load_error("gait_pct,a_N,b_N\n0,1,2\n10,1\n")
+            .find("the header has 3 columns.") != std::string::npos);
+  using kneesim::loads::decimal_comma_hint;
+  using kneesim::loads::separator_hint;
+  CHECK(decimal_comma_hint("0,5") == " (a decimal comma? write 0.5; kneesim reads numbers with a "
+                                     "decimal point)");
+  CHECK(decimal_comma_hint("-12,25") .find("write -12.25") != std::string::npos);
+  CHECK(decimal_comma_hint("x,5").empty());
+  CHECK(decimal_comma_hint("1,2,3").empty());
+  CHECK(decimal_comma_hint("0.5").empty());
+  CHECK(separator_hint("a;b", "1;2,5", 1, 2).find("separated by ';' with decimal commas ('2,5')") !=
+        std::string::npos);
+  CHECK(separator_hint("a,b", "1,2", 2, 2).empty());
+  CHECK(separator_hint("a,b,c", "1,2", 3, 2).empty());
+}

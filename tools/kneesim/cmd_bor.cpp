@@ -88,7 +88,8 @@ void run_bor(const BorOptions& o) {
   fe_options.update_cycles = o.update_every;
   fe_options.max_relax_steps = o.fe_max_steps;
   fe_options.threads = o.threads;
-  if (fe) bor::check_bor_fe_options(fe_options, rig);
+  // checked with either model: a bad value is refused, not silently unused
+  bor::check_bor_fe_options(fe_options, rig);
 
   const std::filesystem::path out = o.out;
   std::vector<bor::BorRow> rows;
@@ -189,20 +190,27 @@ void add_bor_command(CLI::App& app) {
                   "deformable hex8 block, Archard only; docs/deformable.md)")
       ->capture_default_str();
   cmd->add_option("--update-every", opt->update_every,
-                  "fe: cycles between geometry updates")->capture_default_str();
+                  "fe: cycles between geometry updates")
+      ->capture_default_str()->check(whole_range(1, 1e9));
   cmd->add_option("--fe-element-mm", opt->fe_element_mm,
-                  "fe: element size under the ring [mm]")->capture_default_str();
+                  "fe: element size under the ring [mm]")
+      ->capture_default_str()->check(finite_number("[0.02, 1] mm"));
   cmd->add_option("--fe-axial-element-mm", opt->fe_axial_element_mm,
-                  "fe: element size along the ring axis [mm]")->capture_default_str();
+                  "fe: element size along the ring axis [mm]")
+      ->capture_default_str()->check(finite_number("[--fe-element-mm, half the ring width] mm"));
   cmd->add_option("--fe-max-steps", opt->fe_max_steps,
-                  "fe: relaxation steps allowed per geometry")->capture_default_str();
+                  "fe: relaxation steps allowed per geometry")
+      ->capture_default_str()->check(whole_range(100, 1e8));
   cmd->add_option("--threads", opt->threads, "fe: threads of the element loop")
-      ->capture_default_str()->check(CLI::Range(1, 64));
-  cmd->add_option("--load-N", opt->load_N, "normal load [N]")->capture_default_str();
-  cmd->add_option("--cycles", opt->cycles, "final cycle count [cycles]")->capture_default_str();
+      ->capture_default_str()->check(whole_range(1, 64));
+  cmd->add_option("--load-N", opt->load_N, "normal load [N]")
+      ->capture_default_str()->check(finite_number("(0, 10000] N"));
+  cmd->add_option("--cycles", opt->cycles, "final cycle count [cycles]")
+      ->capture_default_str()->check(finite_number("a whole number in [1, 1e9]"));
   cmd->add_option("--k", opt->k_mm3_per_Nmm, "steady-state wear factor k_D [mm^3/(N mm)]")
-      ->capture_default_str();
-  cmd->add_option("--step", opt->step, "cycles between output rows")->capture_default_str();
+      ->capture_default_str()->check(finite_number("[1e-12, 1e-6] mm^3/(N mm)"));
+  cmd->add_option("--step", opt->step, "cycles between output rows")
+      ->capture_default_str()->check(finite_number("a whole number in [1, --cycles]"));
   cmd->add_option("--effect", opt->effect,
                   "wear law: none, running_in, pressure_dependent_wear, creep, incubation")
       ->capture_default_str();

@@ -296,7 +296,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--set", args->sets, "override a config key (repeatable)");
   add_wear_law_options(cmd, args->wear_law, args->law_params);
   cmd->add_option("--jobs", args->jobs, "materials simulated at once (default: all cores)")
-      ->check(finite_range(1, 1024));
+      ->check(whole_range(1, 1024));
   cmd->add_flag("--no-plots", args->no_plots,
                 "skip the PNG plots (the CSV, JSON and Markdown results are the same)");
   cmd->add_flag("--no-report", args->no_report,

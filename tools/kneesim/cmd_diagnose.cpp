@@ -60,10 +60,10 @@ void add_diagnose_bor(CLI::App* diagnose) {
   cmd->add_option("--measured", opt->measured, "measured CSV file")->required();
   cmd->add_option("--calibration-load-N", opt->calibration_load_N,
                   "load at which k_D is calibrated from the steady-state slope [N]")
-      ->capture_default_str();
+      ->capture_default_str()->check(finite_number("(0, 10000] N"));
   cmd->add_option("--steady-state-from-cycles", opt->steady_state_from_cycles,
                   "first cycle count of the steady state used by the calibration")
-      ->capture_default_str();
+      ->capture_default_str()->check(finite_number("[0, 1e9]"));
   add_diagnose_common_options(cmd, opt->common);
   add_bor_rig_options(cmd, opt->rig);
   cmd->callback([opt] {

@@ -275,7 +275,7 @@ void add_particles_command(CLI::App& app) {
   cmd->add_option("--out", opts->out, "output folder")->capture_default_str();
   cmd->add_option("--max-iterations", opts->max_iterations, "wear-loop iteration limit (default: 40 blocks of two passes of the track, 640 "
                   "iterations at the defaults; the loop stops earlier at the run-in steady state)")
-      ->check(finite_range(1, 1e6));
+      ->check(whole_range(1, 1e6));
   cmd->add_flag("--no-film", opts->no_film, "drop transfer films (homogeneous model)");
   cmd->add_flag("--no-plots", opts->no_plots, "skip the PNG plots");
   add_no_calibrate_flag(cmd, opts->no_calibrate);

@@ -102,7 +102,7 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--cycles", args->cycles, "gait cycles (outputs from the last), 1 to 1000000")
-      ->check(CLI::Range(1, 1000000));
+      ->check(whole_range(1, 1e6));
   cmd->add_option("--set", args->sets,
                   "override a config key, e.g. --set rig.preset=iso --set material.name=peek "
                   "(repeatable; value in TOML syntax)");
@@ -123,7 +123,7 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--export-fe-pcts", args->export_fe_pcts,
                   "gait % of the last cycle to export (implies --export-fe), each in [0, 100)")
       ->delimiter(',')
-      ->check(CLI::Range(0.0, 99.999));
+      ->check(finite_range(0.0, 99.999));
   cmd->add_flag("--quiet", args->quiet, "no progress or summary line");
   add_no_calibrate_flag(cmd, args->no_calibrate);
   cmd->callback([args] { run(*args); });

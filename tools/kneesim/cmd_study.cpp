@@ -111,9 +111,10 @@ void add_study_command(CLI::App& app) {
                   "mc (Monte Carlo), lhs (Latin hypercube) or amv (advanced mean value: 1 + n "
                   "gradient runs, then one corrected run per measure at p = 1 % and 99 %)")
       ->capture_default_str();
-  cmd->add_option("--trials", args->trials, "trials (mc, lhs)")->capture_default_str();
+  cmd->add_option("--trials", args->trials, "trials (mc, lhs)")
+      ->capture_default_str()->check(whole_range(2, 1e7));
   cmd->add_option("--seed", args->seed, "study seed (trial i's seed derives from it and i)")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_range(0, kMaxSeed));
   cmd->add_option("--var", args->setup.vars,
                   "an input variable key=distribution (repeatable; replaces the default set): "
                   "normal(mean, sd), lognormal(mean, sd), uniform(lo, hi), truncnormal(mean, sd, "
@@ -129,12 +130,12 @@ void add_study_command(CLI::App& app) {
   cmd->add_flag("--wear", args->setup.wear, "also run the wear simulation per trial");
   add_wear_law_options(cmd, args->wear_law, args->law_params);
   cmd->add_option("--wear-cycles", args->setup.wear_cycles, "wear cycles per trial")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_range(1, 1e9));
   cmd->add_option("--wear-updates", args->setup.wear_updates, "geometry updates per wear trial")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_range(1, 1000));
   cmd->add_option("--threads", args->threads, "threads per rank (0: OMP_NUM_THREADS or all cores)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 4096));
+      ->check(whole_range(0, 4096));
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_flag("--resume", args->resume,
                 "continue the study in DIR from its journal (no finished trial is lost or run "

@@ -61,6 +61,25 @@ inline CLI::Validator whole_range(double lo, double hi) {
       "[" + allowed + "]");
 }
 
+// an option's value must be a finite number; the range `allowed` (e.g. "(0, 10000] N") is
+// checked by the command, which names it in its own message; a text that is no number is
+// refused here with that range (CLI11 would say only "Could not convert")
+inline CLI::Validator finite_number(const std::string& allowed) {
+  return CLI::Validator(
+      [allowed](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v)) {
+          return "value '" + text + "' is not a finite number; allowed: " + allowed;
+        }
+        return std::string();
+      },
+      allowed);
+}
+
+// the largest seed every option takes: 2^53 - 1, exact in a double as in the seed's integer
+inline constexpr double kMaxSeed = 9007199254740991.0;
+
 // --wear-law NAME and --law-param name=value (repeatable, comma-separated): shorthands for
 // --set wear.law=NAME and --set wear.<name>=value (wear/wear_law.h wear_law_overrides)
 inline void add_wear_law_options(CLI::App* cmd, std::string& law,

@@ -49,9 +49,9 @@ void add_diagnose_forces(CLI::App* diagnose) {
   cmd->add_option("--set", opt->run.sets, "override a config key (repeatable)");
   cmd->add_option("--grid-points", opt->run.case_options.grid_points,
                   "full simulations per candidate and cycle across its parameter bounds")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_range(4, 41));
   cmd->add_option("--threads", opt->run.threads, "simulations run at a time")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_range(1, 256));
   add_diagnose_common_options(cmd, opt->common);
   add_no_calibrate_flag(cmd, opt->no_calibrate);
   cmd->callback([opt] {

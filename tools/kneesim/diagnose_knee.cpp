@@ -72,15 +72,15 @@ void add_diagnose_knee_wear(CLI::App* diagnose) {
                   "file)");
   cmd->add_option("--steady-state-from-cycles", opt->run.steady_state_from_cycles,
                   "first cycle count of the steady state used by the calibration")
-      ->capture_default_str();
+      ->capture_default_str()->check(finite_number("[0, 1e9]"));
   cmd->add_option("--check-updates", opt->run.check_updates,
                   "geometry updates of the full wear-loop check of the linear approximation "
                   "(0: no check)")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_range(0, 100));
   cmd->add_option("--geometry-states", opt->run.geometry_states,
                   "worn geometry states the forward model follows along each condition's wear "
                   "loop (0: wear linear in cycles on the pristine insert)")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_range(0, 50));
   add_diagnose_common_options(cmd, opt->common);
   add_no_calibrate_flag(cmd, opt->no_calibrate);
   cmd->callback([opt] {
@@ -102,7 +102,8 @@ void add_diagnose_kinematics(CLI::App* diagnose) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--set", opt->run.sets, "override a config key (repeatable)");
   cmd->add_option("--stance-end-pct", opt->run.stance_end_pct,
-                  "gait % that ends stance in the phase split")->capture_default_str();
+                  "gait % that ends stance in the phase split")
+      ->capture_default_str()->check(finite_number("(0, 100) %"));
   cmd->add_flag("--multi-start", opt->multi_start,
                 "multi-start the full-data fits (about three times the simulations)");
   cmd->add_option("--threads", opt->run.threads,

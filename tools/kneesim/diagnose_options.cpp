@@ -15,13 +15,15 @@ namespace kneesim::cli {
 void add_diagnose_common_options(CLI::App* cmd, DiagnoseCommonOptions& o) {
   cmd->add_option("--out", o.out, "output folder")->capture_default_str();
   cmd->add_option("--bootstrap", o.bootstrap, "bootstrap resamples for the 95 % intervals")
-      ->capture_default_str();
-  cmd->add_option("--seed", o.seed, "bootstrap seed")->capture_default_str();
+      ->capture_default_str()->check(whole_range(0, 100000));
+  cmd->add_option("--seed", o.seed, "bootstrap seed")
+      ->capture_default_str()->check(whole_range(0, kMaxSeed));
   cmd->add_option("--ic-threshold", o.ic_threshold,
-                  "AICc drop against 'none' an effect must exceed")->capture_default_str();
+                  "AICc drop against 'none' an effect must exceed")
+      ->capture_default_str()->check(finite_number("[0, 1000]"));
   cmd->add_option("--heldout-threshold", o.heldout_threshold,
                   "relative held-out RMSE drop against 'none' an effect must exceed")
-      ->capture_default_str();
+      ->capture_default_str()->check(finite_number("[0, 1)"));
   cmd->add_option("--noise-model", o.noise_model,
                   "error model of the fits: white (independent residuals), correlated "
                   "(residuals correlated along each series; specimen offsets), instrument "
@@ -32,7 +34,7 @@ void add_diagnose_common_options(CLI::App* cmd, DiagnoseCommonOptions& o) {
                   "e.g. gain_crosstalk_sd=0.01 for forces, ou=1 to correlate wear residuals)");
   cmd->add_option("--detection-replicates", o.detection_replicates,
                   "simulated data sets per detection limit (0: no detection limits)")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_range(0, 10000));
 }
 
 diagnosis::DiagnosisOptions make_diagnosis_options(const DiagnoseCommonOptions& o) {

@@ -10,6 +10,7 @@
 #include "analysis/report/run_report.h"
 #include "analysis/run/fe_export.h"
 #include "analysis/run/solid_outputs.h"
+#include "engine/io/interrupt.h"
 #include "engine/io/json_out.h"
 #include "engine/io/output_folder.h"
 #include "engine/io/plot.h"
@@ -31,6 +32,7 @@ void clear_outputs(const std::filesystem::path& dir) {
     if (name == "kinematics.csv" || name == "summary.json" || name == "kinematics.png" ||
         name == "kinematics.partial.csv" || name == "measured_kinematics.csv" ||
         name == "summary.failed.json" || name == "fe_export.json" || name == "report.html" ||
+        name == "fe_export.partial.json" || name == "wear_rate.partial.vtp" ||
         name.rfind("pressure_", 0) == 0 || name == "wear_rate.vtp" ||
         name.rfind("insert_stress", 0) == 0) {
       fs::remove(e.path());
@@ -212,9 +214,20 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
                               (config.cycles == 1 ? "" : "s");
   std::vector<std::string> map_plot_args = {(out / "pressure_maps.png").string(),
                                             "Contact pressure, top view: " + context};
+  // the tables and maps are a finished run's only beside summary.json: a signal, a full disk
+  // or any error before it leaves them as X.partial.csv / X.partial.vtp (engine/io/interrupt.h)
+  io::PartialOutputs partial;
+  auto partial_name = [](std::filesystem::path p) {
+    const std::string ext = p.extension().string();
+    return p.replace_extension(".partial" + ext);
+  };
+  for (const char* name : {"wear_rate.vtp", "insert_stress.vtu", "fe_export.json"}) {
+    partial.add(out / name, partial_name(out / name));
+  }
   for (size_t i = 0; i < result.maps.size(); ++i) {
     char name[64];
     std::snprintf(name, sizeof name, "pressure_%03.0fpct.vtp", options.map_pcts[i]);
+    partial.add(out / name, partial_name(out / name));
     map_plot_args.push_back((out / name).string());
     if (solid) {
       write_solid_pressure_map(out / name, built.model, result.maps[i], state, *tracker);
@@ -236,6 +249,7 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   report.seconds = seconds;
   summary.update(describe_figures(report.figures));
   summary["status"] = "complete";
+  partial.add(out / "kinematics.csv", out / "kinematics.partial.csv");
   io::write_csv(out / "kinematics.csv", table);
   std::vector<std::string> plot_args = {(out / "kinematics.csv").string(),
                                         (out / "kinematics.png").string()};
@@ -249,7 +263,10 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   if (job.plots) io::run_plot("kinematics.py", plot_args);
   // the rigid insert's maps (the deformable insert's are per node: ParaView)
   if (job.plots && !solid && !result.maps.empty()) io::run_plot("pressure_maps.py", map_plot_args);
+  // a plot that finds the disk full fails the run like any other write (exit 1, partial names)
+  if (job.plots) io::wait_for_plots(/*disk_full_is_error=*/true);
   io::write_json(out / "summary.json", summary);  // its presence marks a complete run
+  partial.commit();
   // the report reads the files just written, so it shows what they say
   if (job.report) report::write_run_report(out, *job.report, scene->make_scene(built));
   report.summary = std::move(summary);

@@ -8,6 +8,7 @@
 
 #include "analysis/study/statistics.h"
 #include "engine/io/atomic_file.h"
+#include "engine/io/interrupt.h"
 #include "engine/io/json_out.h"
 #include "engine/io/plot.h"
 
@@ -86,7 +87,9 @@ void clear_study_outputs(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
   for (const char* f : {"trials.csv", "envelopes.csv", "wear_envelopes.csv", "sensitivity.csv",
                         "summary.json", "envelopes.png", "sensitivity.png",
-                        "wear_envelopes.png", "measured_kinematics.csv"}) {
+                        "wear_envelopes.png", "measured_kinematics.csv", "trials.partial.csv",
+                        "envelopes.partial.csv", "wear_envelopes.partial.csv",
+                        "sensitivity.partial.csv"}) {
     fs::remove(dir / f);
   }
 }
@@ -94,10 +97,20 @@ void clear_study_outputs(const std::filesystem::path& dir) {
 void write_study_outputs(const StudyProblem& p, const StudyOptions& o, const StudyResult& r) {
   namespace fs = std::filesystem;
   const bool amv = o.method == Method::kAdvancedMeanValue;
-  io::write_file_atomic(o.out / "trials.csv", trials_csv(p, o, r));
-
+  // the tables are a study's result only beside its summary.json: a signal, a full disk or
+  // any error before it leaves them as *.partial.csv (engine/io/interrupt.h)
   std::set<std::string> files;
   for (const auto& c : p.curves) files.insert(c.file);
+  io::PartialOutputs partial;
+  std::vector<std::string> tables = {"trials.csv", "sensitivity.csv"};
+  tables.insert(tables.end(), files.begin(), files.end());
+  for (const std::string& f : tables) {
+    fs::path kept = o.out / f;  // X.csv -> X.partial.csv
+    kept.replace_extension(".partial.csv");
+    partial.add(o.out / f, kept);
+  }
+  io::write_file_atomic(o.out / "trials.csv", trials_csv(p, o, r));
+
   if (!amv) {
     for (const auto& f : files) io::write_file_atomic(o.out / f, envelope_csv(p, r, f));
   }
@@ -180,8 +193,9 @@ void write_study_outputs(const StudyProblem& p, const StudyOptions& o, const Stu
   // plots (a missing matplotlib is a warning; the CSV files are complete without them)
   if (!p.measured.columns.empty()) io::write_csv(o.out / "measured_kinematics.csv", p.measured);
   std::vector<std::string> args = {(o.out).string()};
-  if (!amv) io::run_plot("study.py", args);
+  if (!amv) io::run_plot("study.py", args, /*disk_full_is_error=*/true);
   io::write_json(o.out / "summary.json", j);
+  partial.commit();
 }
 
 }  // namespace kneesim::study

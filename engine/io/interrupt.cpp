@@ -112,6 +112,23 @@ int register_partial(const std::filesystem::path& final, const std::filesystem::
 }
 void unregister_partial(int id) { release(kPartial, id); }
 
+void PartialOutputs::add(const std::filesystem::path& final, const std::filesystem::path& partial) {
+  entries_.push_back({register_partial(final, partial), final, partial});
+}
+
+void PartialOutputs::commit() {
+  for (const Entry& e : entries_) unregister_partial(e.slot);
+  entries_.clear();
+}
+
+PartialOutputs::~PartialOutputs() {
+  for (const Entry& e : entries_) {
+    unregister_partial(e.slot);
+    std::error_code ec;
+    if (std::filesystem::exists(e.final, ec)) std::filesystem::rename(e.final, e.partial, ec);
+  }
+}
+
 int register_temp(const std::filesystem::path& file) { return claim(kTemp, file, {}, -1); }
 void unregister_temp(int id) { release(kTemp, id); }
 

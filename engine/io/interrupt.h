@@ -14,6 +14,8 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <utility>
+#include <vector>
 
 namespace kneesim::io {
 
@@ -29,6 +31,28 @@ void abandon_outputs();
 // abandoned, it is renamed to `partial`. Returns the slot id (-1 when none is free).
 int register_partial(const std::filesystem::path& final, const std::filesystem::path& partial);
 void unregister_partial(int id);
+
+// the tables of a result that is not complete until its summary is written: each is
+// registered as partial while this object lives; leaving the scope without commit() (an
+// exception) renames every one that exists to its partial name, as a signal or an error exit
+// would; commit() (after the summary) unregisters them, keeping the final names
+class PartialOutputs {
+ public:
+  PartialOutputs() = default;
+  ~PartialOutputs();
+  PartialOutputs(const PartialOutputs&) = delete;
+  PartialOutputs& operator=(const PartialOutputs&) = delete;
+  // `final` (e.g. DIR/trials.csv) is kept as `partial` (DIR/trials.partial.csv) if abandoned
+  void add(const std::filesystem::path& final, const std::filesystem::path& partial);
+  void commit();
+
+ private:
+  struct Entry {
+    int slot;
+    std::filesystem::path final, partial;
+  };
+  std::vector<Entry> entries_;
+};
 
 // a temporary file that an abandoned command removes
 int register_temp(const std::filesystem::path& file);

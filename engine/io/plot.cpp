@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "engine/io/interrupt.h"
 #include "engine/io/source_tree.h"
@@ -21,7 +22,12 @@ namespace {
 
 const char* const kPython = "/usr/bin/python3";
 
-void warn_failed(const std::string& script) {
+void warn_failed(const std::string& script, bool disk_full) {
+  if (disk_full) {
+    std::fprintf(stderr, "warning: plot script %s could not write its PNG: No space left on "
+                 "device; the CSV and JSON results are complete\n", script.c_str());
+    return;
+  }
   std::fprintf(stderr, "warning: plot script %s failed; the CSV and JSON results are complete\n",
                script.c_str());
 }
@@ -65,13 +71,16 @@ pid_t spawn_python(const std::vector<std::string>& args, int socket_fd) {
   return pid;
 }
 
-bool wait_ok(pid_t pid) {
+// the child's exit code, -1 when it was killed or cannot be waited for
+int wait_exit(pid_t pid) {
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return false;
+    if (errno != EINTR) return -1;
   }
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
+
+bool wait_ok(pid_t pid) { return wait_exit(pid) == 0; }
 
 // the open session, if any: the interpreter, its socket and the scripts queued, in order
 struct Session {
@@ -95,7 +104,8 @@ bool send_all(int fd, const std::string& text) {
 
 }  // namespace
 
-bool run_plot(const std::string& script, const std::vector<std::string>& args) {
+bool run_plot(const std::string& script, const std::vector<std::string>& args,
+              bool disk_full_is_error) {
   const std::string path = (plots_dir() / script).string();
   if (!std::filesystem::exists(kPython)) {
     std::fprintf(stderr, "warning: %s not found, skipped plot %s\n", kPython, script.c_str());
@@ -116,13 +126,56 @@ bool run_plot(const std::string& script, const std::vector<std::string>& args) {
   argv.insert(argv.end(), args.begin(), args.end());
   const pid_t pid = spawn_python(argv, -1);
   const int child = pid > 0 ? register_child(pid) : -1;
-  const bool ok = pid > 0 && wait_ok(pid);
+  const int code = pid > 0 ? wait_exit(pid) : -1;
   unregister_child(child);
-  if (!ok) {
-    warn_failed(script);
+  if (code == kPlotDiskFull && disk_full_is_error) {
+    throw std::runtime_error("cannot write the PNG plots of " + script + ": No space left on "
+                             "device (the tables in progress are kept as *.partial.*)");
+  }
+  if (code != 0) {
+    warn_failed(script, code == kPlotDiskFull);
     return false;
   }
   return true;
+}
+
+void wait_for_plots(bool disk_full_is_error) {
+  std::vector<std::string> scripts, replies;
+  {
+    // held while reading: no plot is queued meanwhile, so the replies read are these plots'
+    std::lock_guard<std::mutex> lock(g_mutex);
+    if (g_session == nullptr || g_session->queued.empty()) return;
+    std::string text;
+    char c;
+    while (replies.size() < g_session->queued.size()) {
+      const ssize_t n = ::read(g_session->fd, &c, 1);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;  // the interpreter is gone: the rest failed
+      if (c == '\n') {
+        replies.push_back(text);
+        text.clear();
+      } else {
+        text += c;
+      }
+    }
+    scripts.swap(g_session->queued);
+  }
+  replies.resize(scripts.size());
+  bool disk_full = false;
+  std::string full_script;
+  for (size_t i = 0; i < scripts.size(); ++i) {
+    if (replies[i] == "ok") continue;
+    if (replies[i] == "disk full" && disk_full_is_error) {
+      if (!disk_full) full_script = scripts[i];
+      disk_full = true;
+      continue;
+    }
+    warn_failed(scripts[i], replies[i] == "disk full");
+  }
+  if (disk_full) {
+    throw std::runtime_error("cannot write the PNG plots of " + full_script + ": No space left "
+                             "on device (the tables in progress are kept as *.partial.*)");
+  }
 }
 
 PlotSession::PlotSession() {
@@ -172,8 +225,9 @@ PlotSession::~PlotSession() {
   size_t pos = 0;
   for (const std::string& script : s->queued) {
     const size_t end = replies.find('\n', pos);
-    const bool ok = end != std::string::npos && replies.compare(pos, end - pos, "ok") == 0;
-    if (!ok) warn_failed(script);
+    const std::string reply =
+        end == std::string::npos ? std::string() : replies.substr(pos, end - pos);
+    if (reply != "ok") warn_failed(script, reply == "disk full");
     pos = end == std::string::npos ? replies.size() : end + 1;
   }
   delete s;

@@ -5,10 +5,12 @@
 // exit 130 / 143, its table renamed wear.partial.csv, no summary.json, no temporary file, no
 // lock and no Python traceback; a later run removes temporary files a killed run left; a full
 // disk (a small tmpfs, when this process may mount one) ends with exit 1 and only partial
-// names; compare refuses a material listed twice and study a negative thread count.
+// names, for `wear`, `run` (also when only its PNG plots no longer fit) and `study`; compare
+// refuses a material listed twice and study a negative thread count.
 #include <doctest/doctest.h>
 
 #include <sys/mount.h>
+#include <sys/statvfs.h>
 #include <sys/wait.h>
 
 #include <chrono>
@@ -183,4 +185,117 @@ TEST_CASE("a full disk ends a wear run with exit 1 and only partial names") {
   CHECK(fs::exists(out / "wear.partial.csv"));
   CHECK(!any_temporary(out));
   CHECK(!fs::exists(out / ".kneesim.lock"));
+}
+
+namespace {
+
+// a tmpfs of `size` at `dir` (unmounted by the destructor); false when this process may not
+// mount one (needs root)
+struct SmallDisk {
+  fs::path dir;
+  bool mounted = false;
+  SmallDisk(const fs::path& d, const std::string& size) : dir(d) {
+    fs::create_directories(dir);
+    mounted = ::mount("tmpfs", dir.c_str(), "tmpfs", 0, ("size=" + size).c_str()) == 0;
+    if (!mounted) MESSAGE("skipped: cannot mount a small tmpfs here (needs root): " << std::strerror(errno));
+  }
+  ~SmallDisk() {
+    if (mounted) ::umount2(dir.c_str(), MNT_DETACH);
+  }
+  double used_bytes() const {
+    struct statvfs v {};
+    ::statvfs(dir.c_str(), &v);
+    return static_cast<double>(v.f_blocks - v.f_bfree) * static_cast<double>(v.f_frsize);
+  }
+};
+
+// a command that failed for a full disk: exit 1, one sentence naming the cause, no summary,
+// no traceback, nothing under a final result name (only X.partial.Y, the journal that
+// --resume reads, and the folder's dot files)
+void ended_full(const Result& r, const fs::path& out) {
+  INFO(r.err);
+  CHECK(r.exit_code == 1);
+  CHECK(r.err.find("No space left on device") != std::string::npos);
+  CHECK(count_lines(r.err) == 1);
+  CHECK(r.err.find("Traceback") == std::string::npos);
+  CHECK(!fs::exists(out / "summary.json"));
+  CHECK(!fs::exists(out / ".kneesim.lock"));
+  for (const auto& n : names_in(out)) {
+    CAPTURE(n);
+    CHECK((n[0] == '.' || n.find(".partial.") != std::string::npos ||
+           n.rfind("trials.journal.", 0) == 0));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a full disk ends run and study with exit 1 and only partial names") {
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  {
+    // the run's tables and maps take most of 600 kB: a map does not fit
+    SmallDisk disk(tmp.path / "d1", "600k");
+    if (!disk.mounted) return;
+    const fs::path out = disk.dir / "r";
+    ended_full(run_kneesim({"run", "--quiet", "--no-report", "--no-plots", "--out", out.string()},
+                           tmp.path, "run_maps"),
+               out);
+  }
+  double tables = 0.0;
+  {
+    // how much the run writes without its PNG plots
+    SmallDisk disk(tmp.path / "d2", "16m");
+    const fs::path out = disk.dir / "r";
+    REQUIRE(run_kneesim({"run", "--quiet", "--no-report", "--no-plots", "--out", out.string()},
+                        tmp.path, "run_size").exit_code == 0);
+    tables = disk.used_bytes();
+  }
+  {
+    // every table and map fits, the PNG plots (about 90 kB each) do not
+    char size[32];
+    std::snprintf(size, sizeof size, "%.0fk", tables / 1024.0 + 24.0);
+    SmallDisk disk(tmp.path / "d3", size);
+    const fs::path out = disk.dir / "r";
+    const Result r = run_kneesim({"run", "--quiet", "--no-report", "--out", out.string()},
+                                 tmp.path, "run_plots");
+    ended_full(r, out);
+    CHECK(r.err.find("cannot write the PNG plots of") != std::string::npos);
+    CHECK(fs::exists(out / "kinematics.partial.csv"));
+  }
+  {
+    // 20 trials' journal and tables fit in 150 kB, their PNG plots do not
+    SmallDisk disk(tmp.path / "d4", "150k");
+    const fs::path out = disk.dir / "s";
+    ended_full(run_kneesim({"study", "--trials", "20", "--quiet", "--out", out.string()},
+                           tmp.path, "study"),
+               out);
+  }
+}
+
+TEST_CASE("SIGTERM and SIGINT stop a study with only its journal and partial names") {
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  for (const int sig : {SIGTERM, SIGINT}) {
+    CAPTURE(sig);
+    const fs::path out = tmp.path / ("s" + std::to_string(sig));
+    const std::string tag = "study" + std::to_string(sig);
+    // minutes of trials: the signal comes while they run
+    const pid_t pid = start_group({"study", "--trials", "5000", "--quiet", "--threads", "1",
+                                   "--out", out.string()},
+                                  tmp.path, tag);
+    REQUIRE(wait_for(out / "trials.journal.0", 120.0));
+    ::kill(sig == SIGINT ? -pid : pid, sig);
+    CHECK(exit_status(pid) == 128 + sig);
+    const std::string err = slurp(tmp.path / (tag + ".stderr"));
+    INFO(err);
+    CHECK(err.find("Traceback") == std::string::npos);
+    CHECK(!fs::exists(out / "summary.json"));
+    CHECK(!fs::exists(out / ".kneesim.lock"));
+    CHECK(!any_temporary(out));
+    for (const auto& n : names_in(out)) {
+      CAPTURE(n);
+      CHECK((n[0] == '.' || n.find(".partial.") != std::string::npos ||
+             n.rfind("trials.journal.", 0) == 0));
+    }
+  }
 }

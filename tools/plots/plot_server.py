@@ -3,7 +3,8 @@
 Imports matplotlib at once (while the simulation runs), then reads one JSON request per line
 from stdin, {"script": PATH, "args": [...]}, runs the script as `python3 PATH ARGS...` would
 (as __main__, with sys.argv set and its folder on sys.path), and answers on file descriptor 3
-with one line per request, "ok" or "fail", in order. matplotlib's settings are restored and
+with one line per request, "ok", "disk full" (the script exited with plotio.DISK_FULL) or
+"fail", in order. matplotlib's settings are restored and
 every figure closed after each script, so a script sees the state a fresh interpreter gives.
 
 usage: plot_server.py   (started by kneesim; stdin and fd 3 are its socket)
@@ -13,6 +14,8 @@ import os
 import runpy
 import sys
 import traceback
+
+DISK_FULL = 3  # plotio.DISK_FULL, engine/io/plot.h kPlotDiskFull
 
 
 def main():
@@ -28,8 +31,8 @@ def main():
     replies = os.fdopen(3, "w")
     for line in sys.stdin:
         request = json.loads(line)
-        ok = run_script(request["script"], request["args"], matplotlib, plt)
-        replies.write("ok\n" if ok else "fail\n")
+        code = run_script(request["script"], request["args"], matplotlib, plt)
+        replies.write("ok\n" if code == 0 else "disk full\n" if code == DISK_FULL else "fail\n")
         replies.flush()
 
 
@@ -42,12 +45,12 @@ def run_script(script, args, matplotlib, plt):
         else:
             with matplotlib.rc_context():
                 runpy.run_path(script, run_name="__main__")
-        return True
+        return 0
     except SystemExit as e:
-        return e.code in (None, 0)
+        return 0 if e.code is None else e.code if isinstance(e.code, int) else 1
     except Exception:
         traceback.print_exc()
-        return False
+        return 1
     finally:
         sys.argv = saved_argv
         if plt is not None:

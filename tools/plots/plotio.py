@@ -1,7 +1,9 @@
 """Shared by the plot scripts: CSV columns in, PNG files out (written atomically)."""
 import csv
+import errno
 import math
 import os
+import sys
 
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
@@ -13,12 +15,28 @@ def read_columns(path):
     return {k: [float(r[k]) for r in rows] for k in rows[0]}
 
 
+DISK_FULL = 3  # engine/io/plot.h kPlotDiskFull
+
+
 def save_figure(fig, path, dpi=120):
     """Writes the figure to path through a temporary file, so that a killed run never leaves
     a half-written PNG under the final name."""
     tmp = path + ".tmp.png"
-    fig.savefig(tmp, dpi=dpi)
-    os.replace(tmp, path)
+    try:
+        fig.savefig(tmp, dpi=dpi)
+        os.replace(tmp, path)
+    except OSError as e:
+        # a full disk or another write failure: no half-written PNG, one line instead of a
+        # traceback through matplotlib and PIL; a full disk exits with DISK_FULL, which kneesim
+        # reports (engine/io/plot.h kPlotDiskFull)
+        try:
+            os.remove(tmp)
+        except OSError:
+            pass
+        if e.errno in (errno.ENOSPC, errno.EDQUOT):
+            sys.exit(DISK_FULL)
+        print(f"error: cannot write {path}: {e.strerror}", file=sys.stderr)
+        sys.exit(1)
 
 
 def readable_log_axis(axis):

@@ -46,7 +46,9 @@ TEST_CASE("a plot session runs its scripts in order, each as a fresh interpreter
         "            str(matplotlib.rcParams['lines.linewidth']))\n"
         "os.replace(out + '.tmp', out)\n"
         "matplotlib.rcParams['lines.linewidth'] = 7.0\n");
-  write(dir / "fail.py", "import sys\nsys.exit(3)\n");
+  write(dir / "fail.py", "import sys\nsys.exit(2)\n");
+  // a script that found the disk full (tools/plots/plotio.py DISK_FULL)
+  write(dir / "full.py", "import sys\nsys.exit(" + std::to_string(kneesim::io::kPlotDiskFull) + ")\n");
   const char* old = std::getenv("KNEESIM_PLOTS_DIR");
   const std::string saved = old ? old : "";
   setenv("KNEESIM_PLOTS_DIR", dir.c_str(), 1);
@@ -60,6 +62,21 @@ TEST_CASE("a plot session runs its scripts in order, each as a fresh interpreter
   // without a session: the caller waits, and a failure is the return value
   CHECK(kneesim::io::run_plot("ok.py", {c.string(), b.string()}));
   CHECK_FALSE(kneesim::io::run_plot("fail.py", {}));
+  // a full disk: a warning and false, or an error where the command asks for one
+  CHECK_FALSE(kneesim::io::run_plot("full.py", {}));
+  CHECK_THROWS_WITH_AS(kneesim::io::run_plot("full.py", {}, /*disk_full_is_error=*/true),
+                       doctest::Contains("No space left on device"), std::runtime_error);
+  {
+    // in a session: wait_for_plots reports the plots queued so far; the session stays usable
+    const kneesim::io::PlotSession session;
+    CHECK(kneesim::io::run_plot("full.py", {}));
+    CHECK_THROWS_WITH_AS(kneesim::io::wait_for_plots(/*disk_full_is_error=*/true),
+                         doctest::Contains("cannot write the PNG plots of full.py"),
+                         std::runtime_error);
+    CHECK_NOTHROW(kneesim::io::wait_for_plots(true));  // nothing queued any more
+    CHECK(kneesim::io::run_plot("fail.py", {}));
+    CHECK_NOTHROW(kneesim::io::wait_for_plots(true));  // another failure: a warning
+  }
   if (old) setenv("KNEESIM_PLOTS_DIR", saved.c_str(), 1); else unsetenv("KNEESIM_PLOTS_DIR");
   const std::string fresh = slurp(c);  // a fresh interpreter's default linewidth
   CHECK(fresh == c.string() + " " + b.string() + " True 1.5");

@@ -126,6 +126,9 @@ Implant make_implant(const Config& c, double& base_y) {
     // refuse what the rig cannot use (same mesh twice, inside out, upside down, femur not
     // over the insert, flexion axis outside the femur) before any simulation
     check_implant(c, imp);
+    // a frame that passes the checks but reverses anterior and posterior, or a flexion axis
+    // off the condylar arcs, runs with a warning (kneesim implant check explains it)
+    warn_about_frame(c, imp);
   }
   imp.insert_volume = c.insert_closed || c.implant_kind == "generic"
                           ? enclosed_volume(imp.insert) : 0.0;

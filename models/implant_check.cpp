@@ -9,6 +9,8 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <mutex>
+#include <set>
 #include <numbers>
 
 #include "engine/errors.h"
@@ -410,6 +412,59 @@ ImplantFacts describe_implant(const Config& c, const Implant& imp,
     f.articular_max_mm = f.articular_max_mm.cwiseMax(v / kMm);
   }
 
+  const ImplantFacts frame = describe_frame(c, imp);
+  f.arcs[0] = frame.arcs[0];
+  f.arcs[1] = frame.arcs[1];
+  f.suggested_origin_mm = frame.suggested_origin_mm;
+  f.flange_x_mm = frame.flange_x_mm;
+  f.warnings = frame.warnings;
+
+  // gaps: as in the files, and as the run starts (femur 1 mm above the articular top)
+  const std::vector<int> faces = articular_faces(imp.insert, c.articular_min_normal_y);
+  const HeightMap height(imp.insert, faces, 0.25 * kMm);
+  // files: femur at F + origin, insert at T + base; in T: femur at F + origin - base
+  f.files_gap_mm = find_gap(imp.femur, (femur_shift - base) * kMm, height, 0) / kMm;
+  const double start_y = f.articular_max_mm.y() * kMm - fbox.min().y() + kStartPlacement_mm * kMm;
+  const Eigen::Vector3d start(0, start_y, 0);
+  f.start_gap_medial_mm = find_gap(imp.femur, start, height, -1) / kMm;
+  f.start_gap_lateral_mm = find_gap(imp.femur, start, height, 1) / kMm;
+
+  if (c.implant_kind != "mesh") return f;
+  char buf[600];
+  const double base_off = f.insert_min_mm.y() - c.insert_base_y_mm;
+  if (std::abs(base_off) > kBaseWarn_mm) {
+    std::snprintf(buf, sizeof buf,
+                  "base plane: the insert's lowest point is at y = %.2f mm but "
+                  "implant.mesh.insert_base_y_mm = %g; the layer thickness (and the contact "
+                  "stiffness) is measured from insert_base_y_mm: set it to %.2f unless the "
+                  "insert sits on the tray elsewhere.",
+                  f.insert_min_mm.y(), c.insert_base_y_mm, f.insert_min_mm.y());
+    f.warnings.push_back(buf);
+  }
+  if (!f.insert_closed) {
+    f.warnings.push_back("volume: the insert mesh is open (implant.mesh.insert_closed = false), "
+                         "so wear volume is measured by depth only.");
+  }
+  return f;
+}
+
+void warn_about_frame(const Config& c, const Implant& imp) {
+  if (c.implant_kind != "mesh") return;
+  const ImplantFacts frame = describe_frame(c, imp);
+  static std::mutex mutex;
+  static std::set<std::string> said;
+  std::lock_guard<std::mutex> lock(mutex);
+  for (const std::string& w : frame.warnings) {
+    if (!said.insert(w).second) continue;
+    std::fprintf(stderr, "warning: %s: %s (kneesim implant check CONFIG shows the frame)\n",
+                 config_name(c).c_str(), w.c_str());
+  }
+}
+
+ImplantFacts describe_frame(const Config& c, const Implant& imp) {
+  ImplantFacts f;
+  const Eigen::Vector3d origin(c.femur_origin_mm[0], c.femur_origin_mm[1], c.femur_origin_mm[2]);
+  const auto fbox = bounding_box(imp.femur);
   // the flexion axis against the distal condylar arcs
   f.arcs[0] = fit_condyle_arc(imp.femur, -1);
   f.arcs[1] = fit_condyle_arc(imp.femur, 1);
@@ -431,16 +486,6 @@ ImplantFacts describe_implant(const Config& c, const Implant& imp,
     f.suggested_origin_mm.x() = -f.suggested_origin_mm.x() + 0.0;
     f.suggested_origin_mm.z() = -f.suggested_origin_mm.z() + 0.0;
   }
-
-  // gaps: as in the files, and as the run starts (femur 1 mm above the articular top)
-  const std::vector<int> faces = articular_faces(imp.insert, c.articular_min_normal_y);
-  const HeightMap height(imp.insert, faces, 0.25 * kMm);
-  // files: femur at F + origin, insert at T + base; in T: femur at F + origin - base
-  f.files_gap_mm = find_gap(imp.femur, (femur_shift - base) * kMm, height, 0) / kMm;
-  const double start_y = f.articular_max_mm.y() * kMm - fbox.min().y() + kStartPlacement_mm * kMm;
-  const Eigen::Vector3d start(0, start_y, 0);
-  f.start_gap_medial_mm = find_gap(imp.femur, start, height, -1) / kMm;
-  f.start_gap_lateral_mm = find_gap(imp.femur, start, height, 1) / kMm;
 
   if (c.implant_kind != "mesh") return f;
   char buf[600];
@@ -470,20 +515,6 @@ ImplantFacts describe_implant(const Config& c, const Implant& imp,
                                           "rotation_deg above)" : "");
       f.warnings.push_back(buf);
     }
-  }
-  const double base_off = f.insert_min_mm.y() - c.insert_base_y_mm;
-  if (std::abs(base_off) > kBaseWarn_mm) {
-    std::snprintf(buf, sizeof buf,
-                  "base plane: the insert's lowest point is at y = %.2f mm but "
-                  "implant.mesh.insert_base_y_mm = %g; the layer thickness (and the contact "
-                  "stiffness) is measured from insert_base_y_mm: set it to %.2f unless the "
-                  "insert sits on the tray elsewhere.",
-                  f.insert_min_mm.y(), c.insert_base_y_mm, f.insert_min_mm.y());
-    f.warnings.push_back(buf);
-  }
-  if (!f.insert_closed) {
-    f.warnings.push_back("volume: the insert mesh is open (implant.mesh.insert_closed = false), "
-                         "so wear volume is measured by depth only.");
   }
   return f;
 }

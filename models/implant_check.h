@@ -75,4 +75,13 @@ void check_implant(const Config& config, const Implant& implant);
 ImplantFacts describe_implant(const Config& config, const Implant& implant,
                               const engine::InsertSurface& insert);
 
+// the frame and flexion-axis part of describe_implant() (flange, condylar arcs, suggested
+// origin, and the warnings "frame: ..." and "flexion axis: ..."), cheap enough for every run
+ImplantFacts describe_frame(const Config& config, const Implant& implant);
+
+// prints describe_frame()'s warnings to stderr ("warning: CONFIG: frame: ..."), each once per
+// process (a study builds many models of one config); every command that builds a mesh
+// implant calls it, so that a run with anterior and posterior reversed does not end silently
+void warn_about_frame(const Config& config, const Implant& implant);
+
 }  // namespace kneesim::models

@@ -2,7 +2,7 @@
 // (KNEESIM_DATA; skipped with the reason when absent) and on five broken copies of the JW
 // meshes made here byte by byte from the binary STL (the reference of each case is how it was
 // made): inside out (two vertices of every triangle swapped), upside down (turned 180 deg about
-// x, base put back at y = 0), a femur 500 mm away, the same mesh twice, a millimetre file
+// x, base put back at y = 0), a femur 500 mm away or 100 mm up, the same mesh twice, a millimetre file
 // declared as metres. The good meshes pass with the stated facts; every broken one is refused
 // with exit 2 and one sentence naming the file, and `kneesim run` refuses it the same way
 // before simulating (no summary.json, well under the time of one cycle). Also without data:
@@ -131,6 +131,19 @@ TEST_CASE("implant check on the JW and DM meshes and five broken meshes") {
     CHECK(r.exit_code == 0);
     CHECK(r.out.find("set rotation_deg = [0.0, 180.0, 0.0]") != std::string::npos);
     CHECK(r.out.find("warning: flexion axis") != std::string::npos);
+    // the run of the naive config says the same on stderr (it used to end silently with the
+    // rig's anterior and posterior reversed)
+    const Result run = run_kneesim({"run", (tmp.path / "naive.toml").string(), "--cycles", "1",
+                                    "--out", (tmp.path / "naive_run").string(), "--quiet",
+                                    "--no-plots", "--no-report"},
+                                   tmp.path, "naive_run");
+    INFO(run.err);
+    CHECK(run.exit_code == 0);
+    CHECK(run.err.find("naive.toml: frame: the femoral component's highest point (its anterior "
+                       "flange) lies") != std::string::npos);
+    CHECK(run.err.find("set rotation_deg = [0.0, 180.0, 0.0]") != std::string::npos);
+    CHECK(run.err.find("naive.toml: flexion axis: implant.mesh.femur_origin_mm = [0.0, 0.0, "
+                       "0.0]") != std::string::npos);
   }
 
   const std::string femur_stl = slurp(jw_femur), insert_stl = slurp(jw_insert);
@@ -144,6 +157,7 @@ TEST_CASE("implant check on the JW and DM meshes and five broken meshes") {
   spit(tmp.path / "ins_inside_out.stl", inside_out);
   spit(tmp.path / "ins_upside_down.stl", upside);
   spit(tmp.path / "fem_far.stl", map_stl(femur_stl, [](float* p) { p[0] += 0.5f; }));
+  spit(tmp.path / "fem_up.stl", map_stl(femur_stl, [](float* p) { p[1] += 0.1f; }));
   spit(tmp.path / "fem_mm.stl", map_stl(femur_stl, [](float* p) {
          for (int k = 0; k < 3; ++k) p[k] *= 1000.0f;
        }));
@@ -154,6 +168,8 @@ TEST_CASE("implant check on the JW and DM meshes and five broken meshes") {
        "ins_upside_down.stl: implant.mesh.insert is upside down"},
       {"far_femur", "fem_far.stl", jw_insert, "m",
        "fem_far.stl: the femoral component is not above the insert"},
+      {"far_femur_up", "fem_up.stl", jw_insert, "m",
+       "puts the flexion axis outside the femoral component (fem_up.stl spans"},
       {"same_mesh", jw_insert, jw_insert, "m", "are the same mesh"},
       {"mm_as_m", "fem_mm.stl", jw_insert, "m", "fem_mm.stl: vertex 0 has"},
   };

@@ -5,7 +5,8 @@
 // exit 130 / 143, its table renamed wear.partial.csv, no summary.json, no temporary file, no
 // lock and no Python traceback; a later run removes temporary files a killed run left; a full
 // disk (a small tmpfs, when this process may mount one) ends with exit 1 and only partial
-// names, for `wear`, `run` (also when only its PNG plots no longer fit) and `study`; compare
+// names, for `wear`, `run` (also when only its PNG plots no longer fit) and `study`; SIGTERM
+// stops `compare` and `study` the same way; compare
 // refuses a material listed twice and study a negative thread count.
 #include <doctest/doctest.h>
 
@@ -298,4 +299,32 @@ TEST_CASE("SIGTERM and SIGINT stop a study with only its journal and partial nam
              n.rfind("trials.journal.", 0) == 0));
     }
   }
+}
+
+TEST_CASE("SIGTERM stops a compare with every material's table renamed partial") {
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  const fs::path out = tmp.path / "c";
+  const pid_t pid = start_group({"compare", "--materials", "uhmwpe,peek", "--cycles", "5000",
+                                 "--update-every", "1", "--jobs", "2", "--set",
+                                 "implant.edge_length_mm=3", "--no-break-even", "--no-report",
+                                 "--quiet", "--out", out.string()},
+                                tmp.path, "cmp");
+  REQUIRE(wait_for(out / "uhmwpe" / "wear.csv", 120.0));
+  REQUIRE(wait_for(out / "peek" / "wear.csv", 120.0));
+  ::kill(pid, SIGTERM);
+  CHECK(exit_status(pid) == 143);
+  const std::string err = slurp(tmp.path / "cmp.stderr");
+  INFO(err);
+  CHECK(err.find("Traceback") == std::string::npos);
+  CHECK(!fs::exists(out / ".kneesim.lock"));
+  for (const char* m : {"uhmwpe", "peek"}) {
+    CAPTURE(m);
+    CHECK(fs::exists(out / m / "wear.partial.csv"));
+    CHECK(!fs::exists(out / m / "wear.csv"));
+    CHECK(!fs::exists(out / m / "summary.json"));
+    CHECK(!any_temporary(out / m));
+  }
+  CHECK(!fs::exists(out / "comparison.csv"));
+  CHECK(!fs::exists(out / "comparison.json"));
 }

@@ -183,6 +183,7 @@ TEST_CASE("every numeric option refuses a non-number or a value out of range, na
       {{"diagnose", "bor", "--measured", bor_csv, "--block-height-mm", "0"}, "--block-height-mm = 0 is outside the allowed range (0, 1000] mm"},
       {{"diagnose", "forces", "--grid-points", "x"}, "--grid-points: value 'x' is not a whole number; allowed: a whole number 4 to 41"},
       {{"diagnose", "kinematics", "--measured", bor_csv, "--config", bor_csv, "--stance-end-pct", "abc"}, "--stance-end-pct: value 'abc' is not a finite number; allowed: (0, 100) %"},
+      {{"diagnose", "kinematics", "--measured", bor_csv, "--config", bor_csv, "--threads", "1.5"}, "--threads: value '1.5' is not a whole number; allowed: a whole number 1 to 256"},
       {{"study", "--seed", "-1"}, "--seed: value '-1' is not in the allowed range 0 to 9007199254740991"},
       {{"study", "--trials", "1e3"}, "--trials: value '1e3' is not a whole number (write 1000); allowed: a whole number 2 to 10000000"},
       {{"study", "--wear", "--wear-cycles", "abc"}, "--wear-cycles: value 'abc' is not a whole number; allowed: a whole number 1 to 1000000000"},

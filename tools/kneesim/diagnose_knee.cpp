@@ -108,7 +108,7 @@ void add_diagnose_kinematics(CLI::App* diagnose) {
                 "multi-start the full-data fits (about three times the simulations)");
   cmd->add_option("--threads", opt->run.threads,
                   "rig simulations run at a time (results do not depend on it)")
-      ->capture_default_str();
+      ->capture_default_str()->check(whole_range(1, 256));
   add_diagnose_common_options(cmd, opt->common);
   add_no_calibrate_flag(cmd, opt->no_calibrate);
   cmd->callback([opt] {

@@ -42,6 +42,10 @@ WearLaw parse_wear_law(const std::string& name, const std::string& source) {
   throw InputError(source + ": wear law '" + name + "' does not exist (allowed: " + allowed + ")");
 }
 
+WearLawParams make_wear_law(const models::WearConfig& config, const models::BuiltModel& built) {
+  return make_wear_law(config, built.material, built.model.contact.friction);
+}
+
 WearLawParams make_wear_law(const models::WearConfig& c, const models::MaterialConfig& m,
                             double friction) {
   WearLawParams p;

@@ -25,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "models/build_model.h"
 #include "models/config.h"
 
 namespace kneesim::wear {
@@ -63,6 +64,12 @@ WearLaw parse_wear_law(const std::string& name, const std::string& source);
 // InputError when the law needs a coefficient the material lacks (contact_area with C = 0)
 WearLawParams make_wear_law(const models::WearConfig& config,
                             const models::MaterialConfig& material, double friction);
+
+// the law a simulation of `built` wears its insert by: the config's [wear] law with the built
+// insert material's coefficients and the contact's friction. The one call `kneesim wear`,
+// compare, study and the knee-wear diagnosis forward model take their law from, so that the
+// same config gives the same law everywhere
+WearLawParams make_wear_law(const models::WearConfig& config, const models::BuiltModel& built);
 
 // the `--wear-law NAME` and `--law-param name=value` shorthands as config overrides
 // (wear.law, wear.<name>); the diagnosis' short names alpha, p_ref_MPa and beta are accepted

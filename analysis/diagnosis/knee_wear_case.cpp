@@ -185,8 +185,13 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
 
   int states = tables.at(cal)->geometry_states();
   for (const auto& g : conditions) states = std::min(states, tables.at(g)->geometry_states());
+  const wear::WearLawParams& law = tables.at(cal)->law();
   c.baseline_model =
-      "Sarkar-corrected Archard V = k sqrt(1 + 3 mu^2) sum(A p ds) N, " +
+      (law.law == wear::WearLaw::kArchard
+           ? std::string("Sarkar-corrected Archard V = k sqrt(1 + 3 mu^2) sum(A p ds) N, ")
+           : "the config's wear law " + std::string(wear::wear_law_name(law.law)) +
+                 " (wear.law and its parameters, as `kneesim wear` runs it; k scales its "
+                 "coefficient), ") +
       (states > 1
            ? "following the geometry update (each condition's Archard wear loop recorded at " +
                  std::to_string(states) + " geometry states, pristine included, rates "

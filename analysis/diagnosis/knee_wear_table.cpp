@@ -32,6 +32,11 @@ KneeWearTable::KneeWearTable(const std::string& name, const models::Config& conf
   const models::BuiltModel built = models::build_model(config);
   friction_ = built.model.contact.friction;
   sarkar_ = wear::sarkar_factor(friction_);
+  law_ = wear::make_wear_law(config.wear, built);
+  if (!(law_.wear_factor > 0.0)) {
+    throw std::runtime_error("condition '" + name + "': the insert material has no wear factor "
+                             "(material.wear_factor_mm3_per_Nmm = 0); the diagnosis fits k");
+  }
   period_ = built.model.period;
   states_.push_back(record(built.model, 0.0));
 
@@ -94,17 +99,20 @@ KneeCycleRecord KneeWearTable::record(const engine::Model& model_in, double volu
   law.wear_factor = 1.0;
   law.friction = friction_;
   wear::WearAccumulator acc(n, law);
+  wear::WearAccumulator law_acc(n, law_);  // the config's own law, as `kneesim wear` runs it
   // a worn insert conforms and stiffens the contact: when the stability monitor trips, the
   // step is halved (a whole number of steps per cycle), as the wear loop does
   for (int attempt = 0;; ++attempt) {
     pds = Eigen::MatrixXd::Zero(n, kBins);
     lnp_w = Eigen::MatrixXd::Zero(n, kBins);
     acc = wear::WearAccumulator(n, law);
+    law_acc = wear::WearAccumulator(n, law_);
     rec.max_penetration = 0.0;
     engine::RunOptions ro;
     ro.cycles = 2;  // one settling cycle, then the observed one
     ro.observer = [&](const engine::Model& m, const engine::State& s, const engine::Data& d) {
       acc.observe(m, s, d);  // called for the last cycle only
+      if (law_.law != wear::WearLaw::kArchard) law_acc.observe(m, s, d);
       for (int e : d.in_contact) {
         const double p = d.pressure[e];
         const double ds = d.slip_speed[e] * m.dt;
@@ -133,25 +141,37 @@ KneeCycleRecord KneeWearTable::record(const engine::Model& model_in, double volu
 
   // keep the elements that were in contact
   const std::vector<double> cs_all = acc.cross_shear_ratio();
+  // the config law's depth per cycle per unit of the material's k (contact_area: C / k)
+  std::vector<double> law_all;
+  if (law_.law != wear::WearLaw::kArchard) {
+    law_all = law_acc.potential_per_cycle();
+    const double scale = wear::law_coefficient(law_) / law_.wear_factor;
+    for (double& d : law_all) d *= scale;
+  }
   std::vector<int> kept;
   for (int e = 0; e < n; ++e) {
-    if (pds.row(e).sum() > 0.0) kept.push_back(e);
+    // the area law wears an element in contact that does not slide under pressure: keep it
+    if (pds.row(e).sum() > 0.0 || (!law_all.empty() && law_all[static_cast<size_t>(e)] > 0.0))
+      kept.push_back(e);
   }
   const auto m = static_cast<Eigen::Index>(kept.size());
   rec.area.resize(m);
   rec.cross_shear.resize(m);
+  rec.law_rate.resize(m);
   rec.pds.resize(m, kBins);
   rec.lnp.resize(m, kBins);
   for (Eigen::Index i = 0; i < m; ++i) {
     const int e = kept[static_cast<size_t>(i)];
     rec.area[i] = model.insert.area[e];
     rec.cross_shear[i] = cs_all[static_cast<size_t>(e)];
+    if (!law_all.empty()) rec.law_rate[i] = law_all[static_cast<size_t>(e)];
     for (int b = 0; b < kBins; ++b) {
       rec.pds(i, b) = pds(e, b);
       rec.lnp(i, b) = pds(e, b) > 0.0 ? lnp_w(e, b) / pds(e, b) : 0.0;
     }
   }
 
+  if (law_all.empty()) rec.law_rate = sarkar_ * rec.pds.rowwise().sum();  // archard
   // vertex depth = sum over the vertex's elements of A_e / 3 d_e, over the vertex area
   const std::vector<double> varea = wear::vertex_areas(model.insert);
   std::vector<Eigen::Triplet<double>> trip;
@@ -171,6 +191,9 @@ KneeCycleRecord KneeWearTable::record(const engine::Model& model_in, double volu
 
 Eigen::VectorXd KneeWearTable::element_depth_rate(const KneeCycleRecord& r,
                                                   const KneeWearParams& p) const {
+  // the baseline is the config's own law (Archard unless [wear] law says otherwise); the
+  // effects extend Archard, as the effect library defines them
+  if (p.effect == Effect::none) return r.law_rate;
   Eigen::VectorXd d;
   if (p.effect == Effect::pressure_dependent_wear) {
     const double ln_ref = std::log(p.reference_pressure);
@@ -188,6 +211,7 @@ Eigen::VectorXd KneeWearTable::element_depth_rate(const KneeCycleRecord& r,
 }
 
 double KneeWearTable::effective_cycles(const KneeWearParams& p, double cycles) const {
+  if (p.effect == Effect::none) return wear::effective_cycles(law_, 0.0, cycles);  // config's law
   wear::WearLawParams law;
   law.law = p.effect == Effect::running_in   ? wear::WearLaw::kRunningIn
             : p.effect == Effect::incubation ? wear::WearLaw::kIncubation

@@ -25,6 +25,11 @@
 //  - the cross-shear ratio CS_e of the cycle's frictional work, computed by
 //    wear::WearAccumulator::cross_shear_ratio, the same code `kneesim wear --wear-law
 //    cross_shear` uses, so k (1 + g CS_e) is the same extension;
+//  - the depth per cycle of the config's own [wear] law per unit of the material's k
+//    (wear::WearAccumulator with wear::make_wear_law, what `kneesim wear` accumulates), so the
+//    baseline (effect none) is the config's law, not Archard, whatever law that is: at the
+//    material's k the pristine volume per cycle is `kneesim wear`'s; for an archard config the
+//    binned sum is used (the same figure);
 //  - the area-weighted spreading to vertices (wear/geometry_update.h) as a sparse matrix,
 //    for the maximum depth.
 // Rejected: storing every (step, element) sample (10^6 per cycle), because every prediction
@@ -40,6 +45,7 @@
 #include "analysis/diagnosis/effect.h"
 #include "engine/model.h"
 #include "models/config.h"
+#include "wear/wear_law.h"
 
 namespace kneesim::diagnosis {
 
@@ -73,6 +79,9 @@ struct KneeCycleRecord {
   double max_penetration = 0.0;   // largest elastic penetration of the cycle [m]
   Eigen::VectorXd area;           // kept element areas [m^2]
   Eigen::VectorXd cross_shear;    // kept element CS [-]
+  Eigen::VectorXd law_rate;       // kept element depth per cycle of the config's law per unit
+                                  // of the material's k (Sarkar included where the law has it)
+                                  // [m per (m^2/N)]
   Eigen::MatrixXd pds;            // kept elements x bins: sum p ds [Pa m]
   Eigen::MatrixXd lnp;            // kept elements x bins: mean ln(p / 1 Pa) of the bin [-]
   Eigen::SparseMatrix<double> spread;  // vertices x kept elements
@@ -108,6 +117,8 @@ class KneeWearTable {
   int geometry_states() const { return static_cast<int>(states_.size()); }
   double state_volume(int s) const { return states_[static_cast<size_t>(s)].volume; }  // [m^3]
   double friction() const { return friction_; }             // [-]
+  // the config's [wear] law (wear::make_wear_law): the baseline the effects are judged against
+  const wear::WearLawParams& law() const { return law_; }
   double period() const { return period_; }                 // [s]
   double max_penetration() const { return states_.front().max_penetration; }  // elastic [m]
   double work() const { return work_; }                     // sum A p ds over the cycle [J]
@@ -130,6 +141,7 @@ class KneeWearTable {
   std::string name_;               // condition name
   double friction_ = 0.07;         // mu of the contact [-]
   double sarkar_ = 1.0;            // sqrt(1 + 3 mu^2) [-]
+  wear::WearLawParams law_;        // the config's [wear] law with the material's coefficients
   double period_ = 1.0;            // gait cycle [s]
   double work_ = 0.0;              // sum A p ds [J]
   double mean_pressure_ = 0.0;     // work-weighted geometric mean pressure [Pa]

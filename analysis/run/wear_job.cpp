@@ -230,7 +230,7 @@ wear::WearOptions make_wear_options(const WearJob& j, const models::BuiltModel& 
   o.total_cycles = j.cycles;
   o.update_every = j.update_every;
   o.schedule = j.schedule;
-  o.law = wear::make_wear_law(j.config.wear, built.material, built.model.contact.friction);
+  o.law = wear::make_wear_law(j.config.wear, built);
   return o;
 }
 

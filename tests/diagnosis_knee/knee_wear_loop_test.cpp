@@ -10,6 +10,8 @@
 #include "analysis/diagnosis/knee_wear_case.h"
 #include "models/build_model.h"
 #include "tests/diagnosis_knee/knee_hidden_effect.h"
+#include "wear/archard.h"
+#include "wear/wear_law.h"
 #include "wear/wear_loop.h"
 
 using namespace kneesim;
@@ -60,6 +62,44 @@ TEST_CASE("linear wear on the pristine insert agrees with the wear loop (archard
     if (!running_in) {
       CHECK(tables.at("iso")->max_depth(p, n) ==
             doctest::Approx(w.records.back().max_depth).epsilon(0.10).scale(0));
+    }
+  }
+}
+
+TEST_CASE("the diagnosis baseline is the config's wear law: equal to the wear loop's volume") {
+  // Reference: wear::run_wear (`kneesim wear`) with the law wear::make_wear_law gives for the
+  // same config, over one update on the pristine insert, where its volume is exactly the depth
+  // per cycle times the cycles: the table's baseline (effect none) at the material's k must
+  // give the same depth-integral volume (1e-9: the same accumulator on the same simulated
+  // cycle; only the summation order differs). Cross-shear gain 15 moves the volume far from
+  // Archard's, so an Archard baseline would fail this by tens of per cent.
+  for (const char* law_name : {"cross_shear", "contact_area", "material_pressure"}) {
+    CAPTURE(law_name);
+    diagnosis::MeasuredData d;
+    d.source = "law check";
+    d.rows.push_back({"iso", "", "volume_mm3", 0.0, 0.0, 2});
+    std::vector<std::string> sets = {"wear.law=\"" + std::string(law_name) + "\""};
+    if (std::string(law_name) == "cross_shear") sets.push_back("wear.cross_shear_gain=15");
+    if (std::string(law_name) == "contact_area") sets.push_back("material.area_wear_coefficient=1e-8");
+    const auto configs = diagnosis::knee_condition_configs(d, test::knee_test_config(), sets);
+    const models::Config& config = configs.at("iso");
+    const diagnosis::KneeWearTable table("iso", config);
+    const models::BuiltModel built = models::build_model(config);
+    wear::WearOptions o;
+    o.total_cycles = 100'000;
+    o.update_every = 100'000;
+    o.law = wear::make_wear_law(config.wear, built);
+    CHECK(wear::wear_law_name(table.law().law) == wear::wear_law_name(o.law.law));
+    const wear::WearResult w = wear::run_wear(built, o);
+    REQUIRE(w.status == engine::StepStatus::kOk);
+    diagnosis::KneeWearParams p;  // effect none: the baseline
+    p.k = o.law.wear_factor;
+    CHECK(table.volume(p, 100'000) ==
+          doctest::Approx(w.records.back().volume_depth).epsilon(1e-9));
+    // and not Archard's (the law matters): gain 15 moves the volume by over 5 %
+    if (std::string(law_name) == "cross_shear") {
+      const double archard = wear::sarkar_factor(table.friction()) * table.work() * p.k * 1e5;
+      CHECK(table.volume(p, 100'000) / archard - 1.0 > 0.05);
     }
   }
 }

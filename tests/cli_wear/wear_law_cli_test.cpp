@@ -126,11 +126,15 @@ TEST_CASE("every wear law: a kneesim study --wear trial equals kneesim wear of i
       {"running_in", {"running_in_excess=1", "running_in_cycles=1000"}, {}},
       {"incubation", {"incubation_cycles=1000"}, {}},
       {"material_pressure", {}, {}},
+      // creep on top of a law (wear.creep): the trial's wear depth and mass are still the
+      // wear run's (creep is penetration, reported apart)
+      {"cross_shear", {"cross_shear_gain=5.41"}, {"wear.creep=true"}},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
     const LawCase& c = cases[i];
     const std::string law = c.law;
     CAPTURE(law);
+    CAPTURE(c.sets.size());
     const fs::path out = tmp.path / ("study" + std::to_string(i));
     const Result r = run_kneesim(
         with({"study", "--method", "lhs", "--trials", "2", "--seed", "5", "--set",
@@ -165,6 +169,10 @@ TEST_CASE("every wear law: a kneesim study --wear trial equals kneesim wear of i
     const auto ws =
         nlohmann::json::parse(slurp(tmp.path / ("single" + std::to_string(i)) / "summary.json"));
     CHECK(ws["wear_law"] == c.law);
+    if (!c.sets.empty() && c.sets[0] == "wear.creep=true") {  // the creep case did creep
+      CHECK(ws["creep"] == true);
+      CHECK(ws["max_penetration_mm"].get<double>() > ws["max_depth_mm"].get<double>());
+    }
     const double lin = std::stod(cells[col("max_linear_wear_mm")]);
     const double grav = std::stod(cells[col("gravimetric_wear_mg")]);
     CHECK(lin > 0.0);

@@ -50,15 +50,6 @@ double number(const io::TomlDocument& doc, const std::filesystem::path& file,
   return *v;
 }
 
-// a TOML basic string (quotes and backslashes escaped)
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
 
 }  // namespace
 
@@ -73,7 +64,7 @@ CalibratedContactLaw read_contact_law_file(const std::filesystem::path& file) {
       // provenance is carried as written (a string quoted again, a number as text)
       const std::string name = key.substr(std::string(kProvenance).size());
       if (const auto* s = std::get_if<std::string>(&entry.value)) {
-        law.provenance.emplace_back(name, quoted(*s));
+        law.provenance.emplace_back(name, toml_quoted(*s));
       } else {
         law.provenance.emplace_back(name, io::describe(entry.value));
       }
@@ -143,21 +134,30 @@ void write_contact_law_file(const std::filesystem::path& file, const CalibratedC
   s << "# written by kneesim calibrate-contact; found by its key (models/contact_law_library.h)\n"
     << "# or named by a config as contact.law_file\n"
     << "[calibrated_contact]\n"
-    << "material = " << quoted(law.material) << "\n"
-    << "implant = " << quoted(law.implant) << "\n"
-    << "key = " << quoted(law.key.key) << "\n"
-    << "implant_hash = " << quoted(law.key.implant) << "\n"
-    << "material_hash = " << quoted(law.key.material) << "\n"
-    << "settings_hash = " << quoted(law.key.settings) << "\n"
-    << "law = " << quoted(law.law) << "\n"
+    << "material = " << toml_quoted(law.material) << "\n"
+    << "implant = " << toml_quoted(law.implant) << "\n"
+    << "key = " << toml_quoted(law.key.key) << "\n"
+    << "implant_hash = " << toml_quoted(law.key.implant) << "\n"
+    << "material_hash = " << toml_quoted(law.key.material) << "\n"
+    << "settings_hash = " << toml_quoted(law.key.settings) << "\n"
+    << "law = " << toml_quoted(law.law) << "\n"
     << "foundation_modulus_MPa = " << law.foundation_modulus_MPa << "\n"
     << "specified_modulus_MPa = " << law.specified_modulus_MPa << "\n"
-    << "fitted_on = " << quoted(law.fitted_on) << "\n";
+    << "fitted_on = " << toml_quoted(law.fitted_on) << "\n";
   if (!law.provenance.empty()) {
     s << "\n[calibrated_contact.provenance]\n";
     for (const auto& [k, v] : law.provenance) s << k << " = " << v << "\n";
   }
   io::write_file_atomic(file, s.str());
+}
+
+std::string toml_quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
 }
 
 }  // namespace kneesim::models

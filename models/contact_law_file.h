@@ -47,6 +47,10 @@ struct CalibratedContactLaw {
   std::vector<std::pair<std::string, std::string>> provenance;
 };
 
+// a TOML basic string: s in double quotes, its quotes and backslashes escaped (law files and
+// their provenance values)
+std::string toml_quoted(const std::string& s);
+
 // reads a law file and checks its values; InputError (one sentence naming the file, the key,
 // the value and what is allowed) for a missing or malformed file or a value out of range
 CalibratedContactLaw read_contact_law_file(const std::filesystem::path& file);

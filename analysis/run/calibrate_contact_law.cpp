@@ -15,6 +15,7 @@
 #include "engine/io/output_folder.h"
 #include "engine/io/plot.h"
 #include "engine/io/table.h"
+#include "models/contact_law_file.h"
 #include "models/contact_law_key.h"
 #include "models/contact_law_library.h"
 
@@ -40,14 +41,6 @@ std::string number(double v) {
   return buf;
 }
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
 
 // the deformable reference's mesh in words, for the provenance
 std::string describe_mesh(const models::Config& c) {
@@ -207,18 +200,18 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   const std::time_t now = std::time(nullptr);
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
   auto& p = law.provenance;
-  p = {{"command", quoted(job.command)},
-       {"date", quoted(date)},
-       {"load_case", quoted("rig " + base.rig_preset + ", gait " +
+  p = {{"command", models::toml_quoted(job.command)},
+       {"date", models::toml_quoted(date)},
+       {"load_case", models::toml_quoted("rig " + base.rig_preset + ", gait " +
                             fs::path(base.gait_file).filename().string() +
                             "; rigid 2 cycles, deformable 1 cycle")},
-       {"deformable_mesh", quoted(describe_mesh(base))},
+       {"deformable_mesh", models::toml_quoted(describe_mesh(base))},
        {"deformable_elements", std::to_string(deformable_elements)},
        {"modulus_ratio", number(k_fit / k_spec_MPa)},
-       {"search_range_MPa", quoted(number(lo) + " to " + number(hi))},
+       {"search_range_MPa", models::toml_quoted(number(lo) + " to " + number(hi))},
        {"fit_evaluations", std::to_string(evaluations)},
-       {"fit_window_pct", quoted("0-30")},
-       {"held_out_window_pct", quoted("30-60")},
+       {"fit_window_pct", models::toml_quoted("0-30")},
+       {"held_out_window_pct", models::toml_quoted("30-60")},
        {"held_out_peak_rms_specified", number(held_spec.peak)},
        {"held_out_peak_rms_calibrated", number(held_cal.peak)},
        {"held_out_mean_rms_specified", number(held_spec.mean)},

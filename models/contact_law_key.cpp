@@ -170,7 +170,6 @@ Config make_calibration_config(const Config& c, bool own_reference) {
   r.deformable_material = c.deformable_material;
   r.deformable_hardening_MPa = c.deformable_hardening_MPa;
   r.deformable_yield_cap_MPa = c.deformable_yield_cap_MPa;
-  r.threads = c.threads;  // results are bit-identical for any thread count
   return r;
 }
 

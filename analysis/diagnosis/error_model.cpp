@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "analysis/diagnosis/text_format.h"
 #include "engine/errors.h"
 
 namespace kneesim::diagnosis {
@@ -36,7 +37,7 @@ ErrorModel select_error_model(const ErrorModel& full, const std::string& name,
     bool known = false;
     if (key == "ou" || key == "specimen_offset") {
       if (value != 0.0 && value != 1.0) {
-        throw InputError("command line: --noise-param " + key + " = " + std::to_string(value) +
+        throw InputError("command line: --noise-param " + key + " = " + fmt("%g", value) +
                          " is not allowed; use 0 (off) or 1 (on).");
       }
       if (key == "ou") m.correlation = value != 0.0 ? Correlation::ou : Correlation::none;
@@ -49,7 +50,7 @@ ErrorModel select_error_model(const ErrorModel& full, const std::string& name,
       if (key != t.prior_key) continue;
       known = true;
       if (!(value >= 0.0 && value <= 1e6)) {
-        throw InputError("command line: --noise-param " + key + " = " + std::to_string(value) +
+        throw InputError("command line: --noise-param " + key + " = " + fmt("%g", value) +
                          " is outside the allowed range [0, 1e6] (0: a free term).");
       }
       for (auto& own : m.nuisance) {

@@ -61,12 +61,28 @@ bool is_temporary_name(const std::string& name) {
   return !digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos;
 }
 
+constexpr const char* kLockName = ".kneesim.lock";
+constexpr const char* kCommandName = ".kneesim-command";
+
 struct HeldLock {
   std::string folder;  // canonical
   fs::path file;
   int fd = -1;
   int slot = -1;
+  bool created = false;  // this process created the folder (check_output_folder)
 };
+
+// a folder this process created that holds nothing but the command marker: the command was
+// refused or failed before writing anything, so no empty result folder is left behind
+void remove_if_unused(const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (e.path().filename() != kCommandName) return;
+  }
+  if (ec) return;
+  fs::remove(dir / kCommandName, ec);
+  fs::remove(dir, ec);
+}
 
 struct LockRegistry {
   std::mutex mutex;
@@ -77,6 +93,7 @@ struct LockRegistry {
       unregister_lock(h.slot);
       ::unlink(h.file.c_str());
       ::close(h.fd);
+      if (h.created) remove_if_unused(h.file.parent_path());
     }
   }
 };
@@ -94,12 +111,10 @@ std::string first_line(const std::string& text) {
   return n == std::string::npos ? text : text.substr(0, n);
 }
 
-constexpr const char* kLockName = ".kneesim.lock";
-constexpr const char* kCommandName = ".kneesim-command";
 
 // the lock file of `dir` held by this process (flock: released by the kernel when a process
 // dies, so a lock file left by a killed process is free and taken over)
-void claim_folder(const fs::path& dir, const std::string& name) {
+void claim_folder(const fs::path& dir, const std::string& name, bool created) {
   if (is_secondary_rank()) return;
   std::error_code ec;
   const std::string canonical = fs::weakly_canonical(dir, ec).string();
@@ -177,7 +192,7 @@ void claim_folder(const fs::path& dir, const std::string& name) {
       fs::remove(e.path(), ec);
     }
   }
-  g_locks.held.push_back({canonical, lock, fd, register_lock(lock)});
+  g_locks.held.push_back({canonical, lock, fd, register_lock(lock), created});
 }
 
 }  // namespace
@@ -187,7 +202,8 @@ void check_output_folder(const std::filesystem::path& dir, const std::string& fl
   const std::string name = flag + " '" + dir.string() + "'";
   if (dir.empty()) throw InputError(flag + " is empty; give a folder for the results.");
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
+  const bool existed = fs::exists(dir, ec);
+  if (existed && !fs::is_directory(dir, ec)) {
     throw InputError(name + " is an existing file, not a folder; give a folder path (it is "
                      "created when missing).");
   }
@@ -213,7 +229,7 @@ void check_output_folder(const std::filesystem::path& dir, const std::string& fl
   }
   ::close(fd);
   ::unlink(probe.c_str());
-  claim_folder(dir, name);
+  claim_folder(dir, name, !existed);
 }
 
 std::uintmax_t free_bytes(const std::filesystem::path& dir) {

@@ -19,6 +19,8 @@ namespace kneesim::io {
 // and a different command is refused while the folder holds any (non-hidden) file; files a
 // killed run left in the middle of an atomic write (NAME.tmp.PID) are removed. MPI ranks other
 // than 0 share rank 0's claim.
+// A folder the call created is removed again when the process ends and nothing but the
+// command marker was written in it (a command refused after the check leaves no empty folder).
 void check_output_folder(const std::filesystem::path& dir, const std::string& flag = "--out");
 
 // bytes free for an unprivileged writer on the file system holding `dir` (an existing folder);

@@ -7,7 +7,8 @@
 // disk (a small tmpfs, when this process may mount one) ends with exit 1 and only partial
 // names, for `wear`, `run` (also when only its PNG plots no longer fit) and `study`; SIGTERM
 // stops `compare` and `study` the same way; compare
-// refuses a material listed twice and study a negative thread count.
+// refuses a material listed twice and study a negative thread count; a command refused after
+// its folder check removes the folder it created.
 #include <doctest/doctest.h>
 
 #include <sys/mount.h>
@@ -141,6 +142,24 @@ TEST_CASE("a stale lock is taken over; another command's results are not mixed i
   CHECK(!fs::exists(out / "wear.csv"));
   // the same command again is fine
   CHECK(run_kneesim(run, tmp.path, "same").exit_code == 0);
+}
+
+TEST_CASE("a command refused after its folder check leaves no folder it created") {
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  // the measured file is read after the output folder is claimed: the refusal removes the
+  // folder the command created, and keeps a folder that was there before
+  const fs::path created = tmp.path / "new";
+  const Result r = run_kneesim({"diagnose", "bor", "--measured", (tmp.path / "none.csv").string(),
+                                "--out", created.string()}, tmp.path, "refused");
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("none.csv") != std::string::npos);
+  CHECK(!fs::exists(created));
+  const fs::path existing = tmp.path / "old";
+  fs::create_directories(existing);
+  CHECK(run_kneesim({"diagnose", "bor", "--measured", (tmp.path / "none.csv").string(), "--out",
+                     existing.string()}, tmp.path, "refused2").exit_code == 2);
+  CHECK(fs::is_directory(existing));
 }
 
 TEST_CASE("compare refuses a material listed twice; study a negative thread count") {

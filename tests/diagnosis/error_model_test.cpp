@@ -145,6 +145,15 @@ TEST_CASE("error-model names and keys: unknown ones are refused naming the allow
     CHECK(m.find("forces error model") != std::string::npos);
     CHECK(m.find("gain_sd") != std::string::npos);
   }
+  // a value outside its range is printed as given (-1, not std::to_string's -1.000000)
+  try {
+    select_error_model(full, "instrument", {{"gain_sd", -1.0}}, "forces");
+    FAIL("a negative prior sd was accepted");
+  } catch (const kneesim::InputError& e) {
+    const std::string m = e.what();
+    CHECK(m.find("--noise-param gain_sd = -1 is outside the allowed range [0, 1e6]") !=
+          std::string::npos);
+  }
 }
 
 TEST_CASE("a white part in a correlated series: determinant and effective sample size") {

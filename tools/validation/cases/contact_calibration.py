@@ -3,6 +3,8 @@
 rig), with the mesh refinement that shows whether the deformable reference is converged."""
 TITLE = "Calibrated rigid contact law, every material, generic and DM implants"
 LONG = True  # nine deformable cycles and about 150 rigid runs: 20-60 minutes
+IMAGES = {"docs/img/contact_calibration_uhmwpe.png": "gen_uhmwpe/calibration.png",
+          "docs/img/contact_calibration_dm_uhmwpe.png": "dm_uhmwpe/calibration.png"}
 
 DM = "models/examples/dm_stanmore.toml"
 RUNS = [("gen_uhmwpe", [], "uhmwpe", None), ("dm_uhmwpe", [DM], "uhmwpe", None),

@@ -13,23 +13,13 @@
 namespace kneesim::engine {
 
 void update_contact_schedule(const Model& model, Data& data) {
-  const Eigen::Isometry3d X_FT = data.X_WF.inverse() * data.X_WT;
   if (!data.schedule_valid) {
     std::fill(data.recheck_at.begin(), data.recheck_at.end(), data.motion);
+    data.X_FT_prev = data.X_WF.inverse() * data.X_WT;
     data.schedule_valid = true;
-  } else if (model.femur_radius > 0.0) {
-    // the step's motion seen from the femur, D = X_FT(n+1) X_FT(n)^-1, moves a point at p_F by
-    // at most angle(D) |p_F| + |t_D|; measured at |p_F| = femur_radius
-    const Eigen::Isometry3d D = X_FT * data.X_FT_prev.inverse();
-    const double angle = Eigen::AngleAxisd(D.linear()).angle();
-    data.motion += D.translation().norm() + angle * model.femur_radius;
   } else {
-    // no femoral radius known: bound by the insert's own extent
-    const Eigen::Isometry3d delta = data.X_FT_prev.inverse() * X_FT;
-    const double angle = Eigen::AngleAxisd(delta.linear()).angle();
-    data.motion += delta.translation().norm() + angle * data.insert_radius;
+    accumulate_contact_motion(model, data);
   }
-  data.X_FT_prev = X_FT;
   // the due list in ascending order from bit masks of 64 elements: only the due elements'
   // bits are visited
   const int n = model.insert.size();
@@ -42,6 +32,23 @@ void update_contact_schedule(const Model& model, Data& data) {
       *due++ = base + std::countr_zero(mask);
     }
   }
+}
+
+void accumulate_contact_motion(const Model& model, Data& data) {
+  const Eigen::Isometry3d X_FT = data.X_WF.inverse() * data.X_WT;
+  if (model.femur_radius > 0.0) {
+    // the step's motion seen from the femur, D = X_FT(n+1) X_FT(n)^-1, moves a point at p_F by
+    // at most angle(D) |p_F| + |t_D|; measured at |p_F| = femur_radius
+    const Eigen::Isometry3d D = X_FT * data.X_FT_prev.inverse();
+    const double angle = Eigen::AngleAxisd(D.linear()).angle();
+    data.motion += D.translation().norm() + angle * model.femur_radius;
+  } else {
+    // no femoral radius known: bound by the insert's own extent
+    const Eigen::Isometry3d delta = data.X_FT_prev.inverse() * X_FT;
+    const double angle = Eigen::AngleAxisd(delta.linear()).angle();
+    data.motion += delta.translation().norm() + angle * data.insert_radius;
+  }
+  data.X_FT_prev = X_FT;
 }
 
 namespace {

@@ -34,6 +34,11 @@ inline constexpr double kLipschitz = 0.7;
 // thread takes the batched loop, which is faster on one core and gives the same bits)
 inline constexpr int kParallelAbove = 2000;
 
+// adds to data.motion the bound on this step's relative motion of insert points seen from the
+// femur (X_FT against data.X_FT_prev, which it then updates); the deformable insert's node
+// schedule uses the same measure (engine/insert_solid.cpp)
+void accumulate_contact_motion(const Model& model, Data& data);
+
 // accumulates the relative motion and lists in data.due the elements to evaluate this step;
 // allocation-free
 void update_contact_schedule(const Model& model, Data& data);

@@ -33,17 +33,24 @@ double ef_stiffness_at_pressure(const ContactModel& c, double p, double h) {
   return 0.0;
 }
 
+// fraction of a node's sampled distance it may sleep for: the trilinear field of a distance
+// function is 1-Lipschitz per axis, so at most sqrt(3) in any direction (not the rigid path's
+// 0.7, which allows for it only along the axes: a node that sleeps too long would change the
+// result, an element of the rigid path only its schedule)
+constexpr double kNodeSleepLipschitz = 0.57;
+
 }  // namespace
 
-void calc_insert_solid_forces(const Model& model, const State& state, Data& data) {
+void calc_insert_solid_forces(const Model& model, const State& state, Data& data,
+                              solid::SolidState* advance) {
   const solid::SolidModel& solid = model.insert_solid;
   const solid::SolidState& nodes = state.insert_solid;
   solid::SolidData& sd = data.insert_solid;
   const solid::SurfaceContact& contact = model.insert_contact;
   solid::SurfaceContactData& out = data.insert_contact;
-  // internal forces at x(n): the contact's friction needs them (predicted velocity) and the
-  // tray takes its load from them
-  solid::calc_solid_forces(solid, nodes, sd);
+  // internal forces at x(n): the contact's friction needs them (predicted velocity)
+  solid::run_element_loop(solid, nodes, sd, advance == nullptr);
+  const bool move = advance && sd.status == solid::SolidStatus::kOk;
 
   const Eigen::Isometry3d X_WT = data.X_WT;
   const Eigen::Isometry3d X_FT = data.X_WF.inverse() * X_WT;
@@ -51,13 +58,29 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
   const Eigen::Matrix3d R_FT = X_FT.linear();
   const double dt = model.dt;
   const double c_damp = 0.5 * dt * solid.damping_alpha;
-  const int n = contact.size();
   std::vector<Eigen::Vector3d>& femur_velocity_T = out.body_velocity;
-  // node-local contact: each node writes only its own slots
-#pragma omp parallel for num_threads(solid.threads) schedule(static)
-  for (int i = 0; i < n; ++i) {
-    const int node = contact.nodes[i];
+  // the sleep schedule of the top nodes (file comment): the relative motion of the femur
+  // since the last step, measured as the rigid path's
+  if (!data.schedule_valid || model.femur_radius <= 0.0 || !out.sleep) {
+    std::fill(out.wake_at.begin(), out.wake_at.end(), data.motion);
+    data.X_FT_prev = X_FT;
+    data.schedule_valid = true;
+  } else {
+    accumulate_contact_motion(model, data);
+  }
+  const double motion = data.motion, radius = model.femur_radius;
+  const Eigen::Vector3d o_T = X_FT.inverse().translation();  // the femoral origin in T
+  // the contact of a top node at x(n), before the node moves; each node writes only its own
+  // slots
+  const auto contact_node = [&](int i, int node) {
     const Eigen::Vector3d& x_T = nodes.position[node];
+    out.position[i] = x_T;
+    // asleep: out of contact when last sampled, and neither the femur's motion since then nor
+    // the node's own can have closed the gap (its outputs are still the zeros of that sample)
+    const double allowance = (out.wake_at[i] - motion) * out.sleep_scale[i];
+    if (allowance > 0.0 && (x_T - out.checked_position[i]).squaredNorm() < allowance * allowance) {
+      return;
+    }
     Eigen::Vector3d gradient_F;
     const double phi = model.femur_sdf.sample(X_FT * x_T, &gradient_F);
     if (!(phi < 0.0)) {
@@ -66,8 +89,17 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
       out.force[i].setZero();
       out.friction_force[i].setZero();
       sd.external_force[node].setZero();
-      continue;
+      if (radius > 0.0) {
+        // a point r from the femoral origin moves up to max(1, r / R) times `motion`
+        const double r = (x_T - o_T).norm() + phi;
+        const double scale = r > radius ? r / radius : 1.0;
+        out.sleep_scale[i] = scale;
+        out.wake_at[i] = motion + kNodeSleepLipschitz * std::max(0.0, phi - 1e-9) / scale;
+        out.checked_position[i] = x_T;
+      }
+      return;
     }
+    out.wake_at[i] = motion;  // in contact: sampled every step
     const double g = gradient_F.norm();
     const Eigen::Vector3d normal_T =
         g > 0.0 ? Eigen::Vector3d(R_FT.transpose() * gradient_F / g) : Eigen::Vector3d::UnitY();
@@ -94,7 +126,14 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
     out.friction_force[i] = f_friction;
     sd.friction_normal[node] = normal_T;
     sd.external_force[node] = f_normal + f_friction;
-  }
+  };
+  // the node loop: each node's contact (top nodes), then its update when the step moves
+  auto node_work = [&](int node) {
+    const int i = contact.index_of_node[node];
+    if (i >= 0) contact_node(i, node);
+    return move ? solid::advance_node(solid, *advance, sd, node, dt, c_damp) : 0.0;
+  };
+  solid::run_node_loop(solid, move ? advance : nullptr, sd, node_work);
 
   // fixed-order reductions: loads on the femur, summary, stiffness for the stability monitor
   ContactSummary sum;
@@ -106,10 +145,11 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
   out.peak_pressure = 0.0;
   out.area = 0.0;
   out.nodes_in_contact = 0;
+  const int n = contact.size();
   for (int i = 0; i < n; ++i) {
     if (!(out.pressure[i] > 0.0)) continue;
     const int node = contact.nodes[i];
-    const Eigen::Vector3d& x_T = nodes.position[node];
+    const Eigen::Vector3d& x_T = out.position[i];  // x(n): the node may have moved since
     const Eigen::Vector3d p_W = X_WT * x_T;
     const double p = out.pressure[i], area = contact.area[i];
     // the rig's contact damper (see the file comment): the rigid law's stiffness at this

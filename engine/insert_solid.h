@@ -45,7 +45,11 @@ namespace kneesim::engine {
 // internal forces of the solid at the current nodes (flags an inverted element in
 // data.insert_solid), the contact forces of its top nodes (data.insert_contact, the nodes'
 // external forces), the contact summary in data.contact, and the generalized forces of both
-// carriages added into data.generalized. Allocation-free; bit-identical for any thread count.
-void calc_insert_solid_forces(const Model& model, const State& state, Data& data);
+// carriages added into data.generalized. With `advance` (state.insert_solid itself, from
+// step()) each node also takes its central-difference step in the same loop, right after its
+// contact, unless an element inverted (then nothing moves); the carriages' update does not
+// depend on it. Allocation-free; bit-identical for any thread count.
+void calc_insert_solid_forces(const Model& model, const State& state, Data& data,
+                              solid::SolidState* advance = nullptr);
 
 }  // namespace kneesim::engine

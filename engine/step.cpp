@@ -206,7 +206,11 @@ const char* to_string(StepStatus status) {
   return "unknown";
 }
 
-void calc_forces(const Model& model, const State& state, Data& data) {
+namespace {
+
+// calc_forces, and with `advance` the deformable insert's nodes stepped in its node loop
+void calc_forces_and_advance(const Model& model, const State& state, Data& data,
+                             solid::SolidState* advance) {
   // kinematics: DOF values, gimbal axes, part poses
   update_kinematics(model, state, data);
   for (auto& Q : data.generalized) Q.fill(0.0);
@@ -217,24 +221,29 @@ void calc_forces(const Model& model, const State& state, Data& data) {
     calc_contact(model, state, data);
   } else {
     // deformable insert: element forces, its top nodes against the femur, the tray's load
-    calc_insert_solid_forces(model, state, data);
+    calc_insert_solid_forces(model, state, data, advance);
   }
   // springs: spring-gap soft-tissue restraint on the tibial carriage
   apply_restraint(model, data);
 }
 
+}  // namespace
+
+void calc_forces(const Model& model, const State& state, Data& data) {
+  calc_forces_and_advance(model, state, data, nullptr);
+}
+
 StepStatus step(const Model& model, State& state, Data& data) {
-  // forces at x(n) with velocities v(n - 1/2)
-  calc_forces(model, state, data);
+  // forces at x(n) with velocities v(n - 1/2); the deformable insert's nodes take their
+  // central-difference step in its node loop (they need only their own forces)
   const bool solid = !model.insert_solid.empty();
+  calc_forces_and_advance(model, state, data, solid ? &state.insert_solid : nullptr);
   // an inverted insert element: stop before anything moves (the state stays the last good one)
   if (solid && data.insert_solid.status != solid::SolidStatus::kOk) {
     return StepStatus::kInvertedElement;
   }
-  // central-difference update: v(n + 1/2), x(n + 1), R(n + 1) on SO(3), and the insert's nodes
+  // central-difference update: v(n + 1/2), x(n + 1), R(n + 1) on SO(3)
   for (int c = 0; c < 2; ++c) integrate_carriage(model, c, state, data);
-  if (solid) solid::update_solid_nodes(model.insert_solid, state.insert_solid, data.insert_solid,
-                                       model.dt);
   state.time += model.dt;
   ++state.step;
   // checks: NaN, runaway penetration

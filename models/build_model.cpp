@@ -413,7 +413,9 @@ BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
     const loads::MeasuredLoads measured = loads::read_measured_loads(measured_load_spec(c));
     if (!measured.percent) m.period = measured.window_end - measured.window_start;
   }
-  m.threads = c.threads;
+  // the rigid insert's parallel loop runs only in steps with thousands of due elements (the
+  // first): automatic gives it one thread; the deformable insert resolves its own count
+  m.threads = c.threads > 0 ? c.threads : 1;
   m.integrator = c.integrator == "cvode" ? engine::IntegratorKind::kCvode
                                          : engine::IntegratorKind::kCentralDifference;
   const auto femur_box = bounding_box(out.implant.femur);

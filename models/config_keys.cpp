@@ -287,8 +287,8 @@ Registry make_registry(Config& c) {
     "explicit central difference, or SUNDIALS CVODE as a reference");
   r.number("solver.dt_safety", c.dt_safety, 0.05, 1.0,
     "time step as a fraction of the estimated stability limit");
-  r.integer("solver.threads", c.threads, 1, 256,
-    "OpenMP threads of one run");
+  r.integer("solver.threads", c.threads, 0, 256,
+    "threads of one run; 0: automatic (the free cores; the deformable insert's loops)");
   r.integer("solver.cycles", c.cycles, 1, 1000000,
     "gait cycles of kneesim run; outputs come from the last");
 

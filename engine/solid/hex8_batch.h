@@ -24,11 +24,22 @@
 // squared deviator norm (no square root), and only lanes within 1e-6 of it or beyond go
 // through the scalar calc_stress (the radial return of solid_material.h, unchanged).
 //
-// Instruction set: the vectors are GCC vector extensions (4 x double), compiled twice, for
-// baseline x86-64 (two SSE2 halves) and for AVX2, and chosen at run time by the CPU. Both do
-// the same IEEE operations in the same order (no FMA: the project builds with
-// -ffp-contract=off and the AVX2 clone does not enable FMA), so the results are bit-identical
-// on either path, which tests/engine/solid_batch_test.cpp checks.
+// Instruction set: the vectors are GCC vector extensions (kBatchLanes = 8 doubles), compiled
+// three times, for baseline x86-64 (four SSE2 quarters), AVX2 (two halves) and AVX-512F (one
+// register), and chosen at run time by the CPU. All do the same IEEE operations in the same
+// order (no FMA: the project builds with -ffp-contract=off and the clones do not enable
+// contraction), so the results are bit-identical on every path, which
+// tests/engine/solid_batch_test.cpp checks. Eight lanes halve the arithmetic instructions per
+// element on AVX-512 and give the kernel 32 vector registers; the lane count is the batch's,
+// not the instruction set's, so every path sees the same batches.
+//
+// Fused force gather: the step's form of the kernel adds each element's nodal forces straight
+// into the node accumulators, lane by lane in ascending element order (calc_hex8_batch_scatter,
+// Hex8Batch::scatter). A node shared with another range of elements (solid.h: the ranges the
+// threads take) gets its contribution stored in a slot of its own instead, and the node pass
+// sums the slots in ascending element order; so every nodal force is the sum over its elements
+// in ascending element order from 0.0, whatever the ranges, bit for bit the sum the separate
+// gather loop formed before.
 #pragma once
 
 #include <array>
@@ -39,13 +50,16 @@
 
 namespace kneesim::engine::solid {
 
-inline constexpr int kBatchLanes = 4;
+inline constexpr int kBatchLanes = 8;
 
 // reference data of kBatchLanes elements, lane-interleaved ([...][lane]); a lane past the
 // last element of the mesh is padding: the nodes of lane 0, zero volume, gradient, moments
 // and stiffness (zero force), and never read back
-struct alignas(32) Hex8Batch {
+struct alignas(64) Hex8Batch {
   int nodes[kHexNodes][kBatchLanes];                    // node ids
+  // where the step adds each element node's force: >= 0 the node's accumulator, < 0 the
+  // slot ~scatter of a node shared between ranges (make_hex8_batch: the node, one range)
+  int scatter[kHexNodes][kBatchLanes];
   double volume[kBatchLanes];                           // V0 [m^3]
   double gradient[kHexNodes][3][kBatchLanes];           // B_a,j [1/m]
   double hourglass_moment[kHourglassModes][3][kBatchLanes];  // hX_m [m]
@@ -54,7 +68,7 @@ struct alignas(32) Hex8Batch {
 };
 
 // internal nodal forces of a batch [N], lane-interleaved
-struct alignas(32) Hex8BatchForce {
+struct alignas(64) Hex8BatchForce {
   double f[kHexNodes][3][kBatchLanes];
 };
 
@@ -76,23 +90,30 @@ struct Hex8BatchResult {
 Hex8Batch make_hex8_batch(const std::array<int, kHexNodes>* element_nodes,
                           const Hex8Reference* reference, int count, const Eigen::Vector3d* X);
 
+// the compiled paths of the kernel; the best the CPU supports is used unless one is named
+// (hex8_batch_isa: the process-wide choice, the best unless a bench set another)
+enum class Hex8Isa { kBaseline, kAvx2, kAvx512 };
+Hex8Isa hex8_batch_best_isa();
+bool hex8_batch_supports(Hex8Isa isa);
+const char* to_string(Hex8Isa isa);
+Hex8Isa hex8_batch_isa();
+void set_hex8_batch_isa(Hex8Isa isa);  // benches only; the paths give the same bits
+
 // one batch at node positions x (all nodes): forces into `force`, the rest into `out`. For a
 // J2 material, plastic_strain and alpha point at the batch's first element's state (`count`
 // valid lanes); for an elastic one they are ignored and may be null. A pure kernel.
 void calc_hex8_batch(const Hex8Batch& ref, const SolidMaterial& material,
                      const Eigen::Vector3d* x, const Sym6* plastic_strain, const double* alpha,
-                     int count, Hex8BatchForce& force, Hex8BatchResult& out);
+                     int count, Hex8BatchForce& force, Hex8BatchResult& out,
+                     Hex8Isa isa = hex8_batch_isa());
 
-// the two compiled paths of calc_hex8_batch (for the test that they agree bit for bit);
-// calc_hex8_batch_avx2 must only be called when hex8_batch_has_avx2()
-void calc_hex8_batch_baseline(const Hex8Batch& ref, const SolidMaterial& material,
-                              const Eigen::Vector3d* x, const Sym6* plastic_strain,
-                              const double* alpha, int count, Hex8BatchForce& force,
-                              Hex8BatchResult& out);
-void calc_hex8_batch_avx2(const Hex8Batch& ref, const SolidMaterial& material,
-                          const Eigen::Vector3d* x, const Sym6* plastic_strain,
-                          const double* alpha, int count, Hex8BatchForce& force,
-                          Hex8BatchResult& out);
-bool hex8_batch_has_avx2();
+// the same batch with the forces of its `count` elements added where ref.scatter says, lane by
+// lane in ascending order: node_force[3 n + i] += f for scatter >= 0, slot_force[3 s + i] = f
+// for scatter = ~s (the step's fused gather, file comment)
+void calc_hex8_batch_scatter(const Hex8Batch& ref, const SolidMaterial& material,
+                             const Eigen::Vector3d* x, const Sym6* plastic_strain,
+                             const double* alpha, int count, double* node_force,
+                             double* slot_force, Hex8BatchResult& out,
+                             Hex8Isa isa = hex8_batch_isa());
 
 }  // namespace kneesim::engine::solid

@@ -1,14 +1,17 @@
 // The deformable solid of the engine (hex8 mesh) in the Model / State / Data split
 // (design.md): SolidModel holds the mesh, material and everything precomputed from the
 // reference configuration; SolidState the nodal positions and velocities and the plastic
-// state of each element; SolidData the per-step scratch (element force buffers, nodal
-// forces, stresses, energies). Positions are in one frame chosen by the owner (S).
+// state of each element; SolidData the per-step scratch (nodal forces, stresses, energies)
+// and the thread team. Positions are in one frame chosen by the owner (S).
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
+
+#include "engine/work_team.h"
 
 #include "engine/solid/hex8.h"
 #include "engine/solid/hex8_batch.h"
@@ -29,17 +32,25 @@ struct SolidModel {
   std::vector<double> nodal_mass;        // lumped mass incl. any mass scaling [kg], n_nodes
   std::vector<double> inverse_mass;      // 1 / nodal_mass [1/kg], n_nodes
   std::vector<uint8_t> constraint;       // kFix* bits, n_nodes
-  // node -> (element, local node) incidence in CSR form, ascending element order: the
-  // fixed gather order of the element force buffers. Each entry is the index of the x
-  // component of that element node's force in SolidData::batch_force seen as a flat array of
-  // doubles (y and z follow at + kBatchLanes and + 2 kBatchLanes)
-  std::vector<int> incidence_start;      // n_nodes + 1
-  std::vector<int> incidence;
+  // The ranges the step's two loops are cut into, one task of the WorkTeam each (solid_step.h):
+  // range r is the batches [range_batch[r], range_batch[r + 1]) and the nodes [range_node[r],
+  // range_node[r + 1]) (node boundaries on kNodeBlock multiples). A node whose elements all lie
+  // in one range has its force summed in place by that range (Hex8Batch::scatter >= 0; the
+  // range zeroes it first: range_interior); a node shared between ranges gets one slot per
+  // element, slots [slot_start[n], slot_start[n + 1]) in ascending element order, summed by
+  // the node loop. The ranges change where the sums are formed, never their order.
+  int ranges = 1;
+  std::vector<int> range_batch;          // ranges + 1
+  std::vector<int> range_node;           // ranges + 1
+  std::vector<int> range_interior_start; // ranges + 1
+  std::vector<int> range_interior;       // nodes summed in place, by range
+  std::vector<int> slot_start;           // n_nodes + 1
+  int num_slots = 0;
   double physical_mass = 0.0;            // rho V [kg]
   double added_mass = 0.0;               // mass added by mass scaling [kg]
   double dt_critical = 0.0;              // min over elements of L_e / c [s] (with scaled mass)
   double damping_alpha = 0.0;            // mass-proportional damping [1/s] (0: undamped)
-  int threads = 1;                       // OpenMP threads of the element and node loops
+  int threads = 1;                       // threads of the element and node loops (resolved)
 
   int num_nodes() const { return static_cast<int>(reference_positions.size()); }
   int num_elements() const { return static_cast<int>(elements.size()); }
@@ -58,6 +69,10 @@ struct SolidState {
 // what calc_solid_forces found at the current positions
 enum class SolidStatus { kOk, kInverted };
 
+// nodes per block of the kinetic-energy sum: each block is summed in node order, the blocks
+// in block order, so the total does not depend on the ranges
+inline constexpr int kNodeBlock = 64;
+
 // sums over one batch's elements in lane order, summed over the batches in batch order (the
 // fixed order that makes the totals independent of the thread count)
 struct SolidBatchTotals {
@@ -65,6 +80,28 @@ struct SolidBatchTotals {
   double hourglass_energy = 0.0;  // [J]
   double plastic_work = 0.0;      // [J]
   int inverted_element = -1;      // lowest element of the batch with det F <= 0
+  uint32_t yielded_lanes = 0;     // bit l: lane l's plastic state changes (J2)
+};
+
+// the WorkTeam of one SolidData (a copy of the data gets a team of its own: a team serves one
+// owner thread at a time)
+class SolidTeam {
+ public:
+  SolidTeam() = default;
+  explicit SolidTeam(int threads)
+      : threads_(threads), team_(threads > 1 ? std::make_unique<WorkTeam>(threads) : nullptr) {}
+  SolidTeam(const SolidTeam& o) : SolidTeam(o.threads_) {}
+  SolidTeam& operator=(const SolidTeam& o) {
+    if (this != &o) *this = SolidTeam(o.threads_);
+    return *this;
+  }
+  SolidTeam(SolidTeam&&) = default;
+  SolidTeam& operator=(SolidTeam&&) = default;
+  WorkTeam* get() const { return team_.get(); }
+
+ private:
+  int threads_ = 1;
+  std::unique_ptr<WorkTeam> team_;
 };
 
 struct SolidData {
@@ -75,27 +112,28 @@ struct SolidData {
   std::vector<double> friction_viscosity;           // [N s/m], n_nodes (0: no friction)
   std::vector<Eigen::Vector3d> friction_normal;     // unit normal of the body, n_nodes
   std::vector<Eigen::Vector3d> friction_body_velocity;  // [m/s], n_nodes
-  std::vector<Hex8BatchForce> batch_force;          // internal, per batch [N]
   std::vector<SolidBatchTotals> batch_totals;       // per batch
-  std::vector<Eigen::Vector3d> internal_force;      // gathered [N], n_nodes
-  std::vector<Sym6> stress;                // second Piola-Kirchhoff S [Pa], n_elements
+  std::vector<Eigen::Vector3d> internal_force;      // summed over the elements [N], n_nodes
+  std::vector<double> slot_force;          // element forces on shared nodes [N], 3 num_slots
   std::vector<double> von_mises;           // of S [Pa], n_elements
+  // per element, filled by calc_solid_forces (not by a step, which needs none of them)
+  std::vector<Sym6> stress;                // second Piola-Kirchhoff S [Pa], n_elements
   std::vector<double> strain_energy;       // elastic, element [J], n_elements
   std::vector<double> hourglass_energy;    // [J], n_elements
-  // the plastic state the current positions produce, committed by step_solid; J2 only, and
-  // written only where plastic_step is set (elsewhere the state stays as it is)
-  std::vector<uint8_t> plastic_step;       // 1: this element's plastic state changes
+  std::vector<double> jacobian_ratio;      // det F of each element [-]
+  // the plastic state the current positions produce, committed by a step; J2 only, and
+  // written only for the lanes of SolidBatchTotals::yielded_lanes (elsewhere the state stays)
   std::vector<Sym6> next_plastic_strain;
   std::vector<double> next_alpha;
   std::vector<double> next_plastic_work;
-  std::vector<double> jacobian_ratio;      // det F of each element [-]
   SolidStatus status = SolidStatus::kOk;
   int inverted_element = -1;               // lowest element id with det F <= 0
   double kinetic_energy = 0.0;             // at the last completed step [J]
   double total_strain_energy = 0.0;        // elastic + hourglass [J]
   double total_hourglass_energy = 0.0;     // [J]
   double total_plastic_work = 0.0;         // [J]
-  std::vector<double> nodal_kinetic_energy;  // scratch of the kinetic energy sum [J], n_nodes
+  std::vector<double> block_kinetic_energy;  // per kNodeBlock nodes, summed in node order [J]
+  SolidTeam team;                          // runs the element and node loops
 };
 
 }  // namespace kneesim::engine::solid

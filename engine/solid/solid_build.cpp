@@ -7,6 +7,10 @@
 namespace kneesim::engine::solid {
 namespace {
 
+// a range of fewer batches does not pay for the thread that takes it (the team's loop costs a
+// few microseconds, 64 batches of 8 elements about 20)
+constexpr int kMinRangeBatches = 64;
+
 std::string format(double v) {
   std::ostringstream s;
   s << v;
@@ -14,6 +18,75 @@ std::string format(double v) {
 }
 
 }  // namespace
+
+void cut_solid_ranges(SolidModel& model, int ranges) {
+  const int n_nodes = model.num_nodes(), n_el = model.num_elements();
+  const int n_batches = model.num_batches();
+  std::vector<int> elements_of_node(n_nodes, 0);
+  for (const auto& element : model.elements)
+    for (int n : element) ++elements_of_node[n];
+  model.ranges = std::clamp(std::min(ranges, n_batches), 1, WorkTeam::kMaxTasks);
+  const int R = model.ranges;
+  model.range_batch.resize(R + 1);
+  for (int r = 0; r <= R; ++r) {
+    model.range_batch[r] = static_cast<int>(static_cast<long>(n_batches) * r / R);
+  }
+  std::vector<int> range_of_batch(n_batches);
+  for (int r = 0; r < R; ++r) {
+    for (int b = model.range_batch[r]; b < model.range_batch[r + 1]; ++b) range_of_batch[b] = r;
+  }
+  // each node's lowest and highest element (elements ascend, so the first and last seen)
+  std::vector<int> first(n_nodes, -1), last(n_nodes, -1);
+  for (int e = 0; e < n_el; ++e) {
+    for (int n : model.elements[e]) {
+      if (first[n] < 0) first[n] = e;
+      last[n] = e;
+    }
+  }
+  const auto range_of = [&](int e) { return range_of_batch[e / kBatchLanes]; };
+  // interior nodes, by range; slots of the shared nodes
+  std::vector<uint8_t> shared(n_nodes, 0);
+  std::vector<std::vector<int>> interior(R);
+  model.slot_start.assign(n_nodes + 1, 0);
+  for (int n = 0; n < n_nodes; ++n) {
+    int slots = 0;
+    if (first[n] >= 0) {
+      if (range_of(first[n]) == range_of(last[n])) {
+        interior[range_of(first[n])].push_back(n);
+      } else {
+        shared[n] = 1;
+        slots = elements_of_node[n];
+      }
+    }
+    model.slot_start[n + 1] = model.slot_start[n] + slots;
+  }
+  model.num_slots = model.slot_start[n_nodes];
+  model.range_interior_start.assign(R + 1, 0);
+  model.range_interior.clear();
+  for (int r = 0; r < R; ++r) {
+    model.range_interior.insert(model.range_interior.end(), interior[r].begin(), interior[r].end());
+    model.range_interior_start[r + 1] = static_cast<int>(model.range_interior.size());
+  }
+  std::vector<int> fill(model.slot_start.begin(), model.slot_start.end() - 1);
+  for (int e = 0; e < n_el; ++e) {
+    Hex8Batch& batch = model.batches[e / kBatchLanes];
+    for (int a = 0; a < kHexNodes; ++a) {
+      const int n = model.elements[e][a];
+      batch.scatter[a][e % kBatchLanes] = shared[n] ? ~fill[n]++ : n;
+    }
+  }
+  // node ranges: a range's nodes are mostly those its elements touch first (the nodes it
+  // updates are then in its cache), on kNodeBlock boundaries
+  model.range_node.assign(R + 1, 0);
+  model.range_node[R] = n_nodes;
+  for (int r = 1; r < R; ++r) {
+    const int e0 = model.range_batch[r] * kBatchLanes;
+    int before = 0;
+    for (int n = 0; n < n_nodes; ++n) before += first[n] >= 0 && first[n] < e0;
+    const int at = std::min(n_nodes, (before + kNodeBlock / 2) / kNodeBlock * kNodeBlock);
+    model.range_node[r] = std::max(model.range_node[r - 1], at);
+  }
+}
 
 void check_solid_material(const SolidMaterial& m) {
   if (!(m.youngs_modulus > 0.0)) {
@@ -51,7 +124,7 @@ SolidModel make_solid_model(std::vector<Eigen::Vector3d> nodes,
   model.reference_positions = std::move(nodes);
   model.elements = std::move(elements);
   model.damping_alpha = options.damping_alpha;
-  model.threads = std::max(1, options.threads);
+  model.threads = resolve_thread_count(options.threads);
   const int n_nodes = model.num_nodes(), n_el = model.num_elements();
   model.constraint = constraint.empty() ? std::vector<uint8_t>(n_nodes, 0) : std::move(constraint);
   if (static_cast<int>(model.constraint.size()) != n_nodes) {
@@ -62,7 +135,6 @@ SolidModel make_solid_model(std::vector<Eigen::Vector3d> nodes,
   model.reference.resize(n_el);
   model.nodal_mass.assign(n_nodes, 0.0);
   model.dt_critical = INFINITY;
-  std::vector<int> count(n_nodes, 0);
   for (int e = 0; e < n_el; ++e) {
     HexPoints X;
     for (int a = 0; a < kHexNodes; ++a) {
@@ -72,7 +144,6 @@ SolidModel make_solid_model(std::vector<Eigen::Vector3d> nodes,
                               std::to_string(n) + ", outside 0.." + std::to_string(n_nodes - 1));
       }
       X[a] = model.reference_positions[n];
-      ++count[n];
     }
     const Hex8Reference& ref = model.reference[e] =
         make_hex8_reference(X, material.youngs_modulus, material.shear_modulus());
@@ -110,20 +181,7 @@ SolidModel make_solid_model(std::vector<Eigen::Vector3d> nodes,
                                        model.reference_positions.data());
   }
 
-  // CSR incidence in ascending element order, as offsets into the batched force buffers
-  model.incidence_start.assign(n_nodes + 1, 0);
-  for (int n = 0; n < n_nodes; ++n) model.incidence_start[n + 1] = model.incidence_start[n] + count[n];
-  model.incidence.resize(model.incidence_start[n_nodes]);
-  std::vector<int> fill(model.incidence_start.begin(), model.incidence_start.end() - 1);
-  constexpr int kBatchDoubles = sizeof(Hex8BatchForce) / sizeof(double);
-  static_assert(kBatchDoubles == kHexNodes * 3 * kBatchLanes, "Hex8BatchForce is unpadded");
-  for (int e = 0; e < n_el; ++e) {
-    const int b = e / kBatchLanes, lane = e % kBatchLanes;
-    for (int a = 0; a < kHexNodes; ++a) {
-      model.incidence[fill[model.elements[e][a]]++] =
-          b * kBatchDoubles + a * 3 * kBatchLanes + lane;
-    }
-  }
+  cut_solid_ranges(model, std::min(model.threads, model.num_batches() / kMinRangeBatches));
   return model;
 }
 
@@ -145,19 +203,19 @@ SolidData make_solid_data(const SolidModel& model) {
   d.friction_viscosity.assign(nn, 0.0);
   d.friction_normal.assign(nn, Eigen::Vector3d::UnitY());
   d.friction_body_velocity.assign(nn, Eigen::Vector3d::Zero());
-  d.batch_force.resize(model.num_batches());
   d.batch_totals.resize(model.num_batches());
   d.internal_force.assign(nn, Eigen::Vector3d::Zero());
-  d.stress.assign(ne, Sym6::Zero());
+  d.slot_force.assign(3 * static_cast<size_t>(model.num_slots), 0.0);
   d.von_mises.assign(ne, 0.0);
+  d.stress.assign(ne, Sym6::Zero());
   d.strain_energy.assign(ne, 0.0);
   d.hourglass_energy.assign(ne, 0.0);
-  d.plastic_step.assign(ne, 0);
+  d.jacobian_ratio.assign(ne, 1.0);
   d.next_plastic_strain.assign(ne, Sym6::Zero());
   d.next_alpha.assign(ne, 0.0);
   d.next_plastic_work.assign(ne, 0.0);
-  d.jacobian_ratio.assign(ne, 1.0);
-  d.nodal_kinetic_energy.assign(nn, 0.0);
+  d.block_kinetic_energy.assign((nn + kNodeBlock - 1) / kNodeBlock, 0.0);
+  d.team = SolidTeam(std::min(model.threads, model.ranges));
   return d;
 }
 

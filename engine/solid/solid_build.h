@@ -27,7 +27,7 @@ namespace kneesim::engine::solid {
 struct SolidOptions {
   double mass_scaling_dt = 0.0;  // target stable step [s]; 0: no mass scaling
   double damping_alpha = 0.0;    // mass-proportional damping [1/s]
-  int threads = 1;               // OpenMP threads
+  int threads = 1;               // threads of the step's loops (0: automatic, work_team.h)
 };
 
 // checks the material: E > 0, 0 <= nu < 0.5, rho > 0, yield >= 0, H >= 0
@@ -40,6 +40,11 @@ SolidModel make_solid_model(std::vector<Eigen::Vector3d> nodes,
                             std::vector<std::array<int, kHexNodes>> elements,
                             const SolidMaterial& material, const SolidOptions& options,
                             std::vector<uint8_t> constraint = {});
+
+// cuts the step's loops into `ranges` ranges (at most one per batch; solid.h). The model is
+// built with one per thread, fewer for a small mesh (64 batches or more each); the results do
+// not depend on it, which the tests check by cutting small meshes into many
+void cut_solid_ranges(SolidModel& model, int ranges);
 
 // stable step of one element for the given density [s]
 double calc_element_stable_step(const Hex8Reference& ref, const SolidMaterial& material,

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <bit>
 
 namespace kneesim::engine::solid {
 
@@ -34,63 +35,58 @@ void calc_hex8_response(const Hex8Reference& ref, const SolidMaterial& material,
   }
 }
 
-void calc_solid_forces(const SolidModel& model, const SolidState& state, SolidData& data) {
-  const int n_el = model.num_elements(), n_nodes = model.num_nodes();
-  const int n_batches = model.num_batches();
+void run_element_loop(const SolidModel& model, const SolidState& state, SolidData& data,
+                      bool element_fields) {
+  const int n_el = model.num_elements();
   const bool plastic = model.material.kind == SolidMaterialKind::kJ2Plastic;
-  // element loop over batches: each batch writes only its own buffers and its elements' slots
-#pragma omp parallel for num_threads(model.threads) schedule(static)
-  for (int b = 0; b < n_batches; ++b) {
-    const int e0 = b * kBatchLanes, count = std::min(kBatchLanes, n_el - e0);
-    Hex8BatchResult r;
-    calc_hex8_batch(model.batches[b], model.material, state.position.data(),
-                    plastic ? &state.plastic_strain[e0] : nullptr,
-                    plastic ? &state.alpha[e0] : nullptr, count, data.batch_force[b], r);
-    SolidBatchTotals t;
-    for (int l = 0; l < count; ++l) {
-      const int e = e0 + l;
-      Sym6& stress = data.stress[e];
-      for (int v = 0; v < 6; ++v) stress[v] = r.stress[v][l];
-      data.von_mises[e] = r.von_mises[l];
-      data.strain_energy[e] = r.strain_energy[l];
-      data.hourglass_energy[e] = r.hourglass_energy[l];
-      data.jacobian_ratio[e] = r.det_F[l];
-      t.strain_energy += r.strain_energy[l];
-      t.hourglass_energy += r.hourglass_energy[l];
-      if (!(r.det_F[l] > 0.0) && t.inverted_element < 0) t.inverted_element = e;
-      if (!plastic) continue;
-      data.plastic_step[e] = r.yielded[l];
-      if (r.yielded[l]) {
-        data.next_plastic_strain[e] = r.update[l].plastic_strain;
-        data.next_alpha[e] = r.update[l].alpha;
-        data.next_plastic_work[e] =
-            state.plastic_work[e] + r.update[l].plastic_work * model.batches[b].volume[l];
-        t.plastic_work += data.next_plastic_work[e];
-      } else {
-        t.plastic_work += state.plastic_work[e];
+  double* node_force = data.internal_force.empty() ? nullptr : data.internal_force[0].data();
+  double* slot_force = data.slot_force.data();
+  auto task = [&](int r) {
+    // the nodes this range sums in place start from zero
+    for (int k = model.range_interior_start[r]; k < model.range_interior_start[r + 1]; ++k) {
+      data.internal_force[model.range_interior[k]].setZero();
+    }
+    for (int b = model.range_batch[r]; b < model.range_batch[r + 1]; ++b) {
+      const int e0 = b * kBatchLanes, count = std::min(kBatchLanes, n_el - e0);
+      Hex8BatchResult res;
+      calc_hex8_batch_scatter(model.batches[b], model.material, state.position.data(),
+                              plastic ? &state.plastic_strain[e0] : nullptr,
+                              plastic ? &state.alpha[e0] : nullptr, count, node_force,
+                              slot_force, res);
+      SolidBatchTotals t;
+      for (int l = 0; l < count; ++l) {
+        const int e = e0 + l;
+        data.von_mises[e] = res.von_mises[l];
+        t.strain_energy += res.strain_energy[l];
+        t.hourglass_energy += res.hourglass_energy[l];
+        if (!(res.det_F[l] > 0.0) && t.inverted_element < 0) t.inverted_element = e;
+        if (element_fields) {
+          for (int v = 0; v < 6; ++v) data.stress[e][v] = res.stress[v][l];
+          data.strain_energy[e] = res.strain_energy[l];
+          data.hourglass_energy[e] = res.hourglass_energy[l];
+          data.jacobian_ratio[e] = res.det_F[l];
+        }
+        if (!plastic) continue;
+        if (res.yielded[l]) {
+          t.yielded_lanes |= 1u << l;
+          data.next_plastic_strain[e] = res.update[l].plastic_strain;
+          data.next_alpha[e] = res.update[l].alpha;
+          data.next_plastic_work[e] =
+              state.plastic_work[e] + res.update[l].plastic_work * model.batches[b].volume[l];
+          t.plastic_work += data.next_plastic_work[e];
+        } else {
+          t.plastic_work += state.plastic_work[e];
+        }
       }
+      data.batch_totals[b] = t;
     }
-    data.batch_totals[b] = t;
-  }
-  // node loop: gather in ascending element order
-  const double* force = data.batch_force.empty() ? nullptr : data.batch_force[0].f[0][0];
-#pragma omp parallel for num_threads(model.threads) schedule(static)
-  for (int n = 0; n < n_nodes; ++n) {
-    double fx = 0.0, fy = 0.0, fz = 0.0;
-    for (int k = model.incidence_start[n]; k < model.incidence_start[n + 1]; ++k) {
-      const double* f = force + model.incidence[k];
-      fx += f[0];
-      fy += f[kBatchLanes];
-      fz += f[2 * kBatchLanes];
-    }
-    data.internal_force[n] = Eigen::Vector3d(fx, fy, fz);
-  }
+  };
+  for_each_range(model, data, task);
   // serial sums in batch order (deterministic) and the inversion check
   data.status = SolidStatus::kOk;
   data.inverted_element = -1;
   double strain = 0.0, hourglass = 0.0, plastic_work = 0.0;
-  for (int b = 0; b < n_batches; ++b) {
-    const SolidBatchTotals& t = data.batch_totals[b];
+  for (const SolidBatchTotals& t : data.batch_totals) {
     strain += t.strain_energy;
     hourglass += t.hourglass_energy;
     plastic_work += t.plastic_work;
@@ -104,54 +100,34 @@ void calc_solid_forces(const SolidModel& model, const SolidState& state, SolidDa
   data.total_plastic_work = plastic_work;
 }
 
-SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& data, double dt) {
-  // stresses and internal forces at x(n)
-  calc_solid_forces(model, state, data);
-  if (data.status != SolidStatus::kOk) return data.status;
-  update_solid_nodes(model, state, data, dt);
-  return SolidStatus::kOk;
-}
-
-void update_solid_nodes(const SolidModel& model, SolidState& state, SolidData& data, double dt) {
-  // central-difference update of the nodes; kinetic energy at t(n) from the mean of the
-  // half-step velocities
-  const int n_nodes = model.num_nodes(), n_el = model.num_elements();
-  const double c = 0.5 * dt * model.damping_alpha;
-#pragma omp parallel for num_threads(model.threads) schedule(static)
-  for (int n = 0; n < n_nodes; ++n) {
-    const Eigen::Vector3d v_old = state.velocity[n];
-    Eigen::Vector3d v = ((1.0 - c) * v_old + dt * model.inverse_mass[n] *
-                                                 (data.external_force[n] - data.internal_force[n])) /
-                        (1.0 + c);
-    if (data.friction_viscosity[n] > 0.0) {
-      // friction implicit: (I + a P)(v_new - v_body) = v - v_body with P the tangential
-      // projector, solved by (I + a P)^-1 = I - a / (1 + a) P
-      const double a = dt * model.inverse_mass[n] * data.friction_viscosity[n];
-      const Eigen::Vector3d& nb = data.friction_normal[n];
-      const Eigen::Vector3d rel = v - data.friction_body_velocity[n];
-      v -= (a / (1.0 + a)) * (rel - rel.dot(nb) * nb);
-    }
-    const uint8_t fixed = model.constraint[n];
-    for (int i = 0; i < 3; ++i) {
-      if (fixed & (1u << i)) v[i] = data.prescribed_velocity[n][i];
-    }
-    state.velocity[n] = v;
-    state.position[n] += dt * v;
-    data.nodal_kinetic_energy[n] = 0.125 * model.nodal_mass[n] * (v + v_old).squaredNorm();
-  }
-  // commit the plastic state the forces were computed with, where it changed
-  if (model.material.kind == SolidMaterialKind::kJ2Plastic) {
-#pragma omp parallel for num_threads(model.threads) schedule(static)
-    for (int e = 0; e < n_el; ++e) {
-      if (!data.plastic_step[e]) continue;
+void commit_plastic_state(const SolidModel& model, SolidState& state, const SolidData& data,
+                          int b0, int b1) {
+  if (model.material.kind != SolidMaterialKind::kJ2Plastic) return;
+  for (int b = b0; b < b1; ++b) {
+    for (uint32_t lanes = data.batch_totals[b].yielded_lanes; lanes; lanes &= lanes - 1) {
+      const int e = b * kBatchLanes + std::countr_zero(lanes);
       state.plastic_strain[e] = data.next_plastic_strain[e];
       state.alpha[e] = data.next_alpha[e];
       state.plastic_work[e] = data.next_plastic_work[e];
     }
   }
-  double kinetic = 0.0;
-  for (int n = 0; n < n_nodes; ++n) kinetic += data.nodal_kinetic_energy[n];
-  data.kinetic_energy = kinetic;
+}
+
+void calc_solid_forces(const SolidModel& model, const SolidState& state, SolidData& data) {
+  run_element_loop(model, state, data, true);
+  auto nothing = [](int) { return 0.0; };
+  run_node_loop(model, nullptr, data, nothing);
+}
+
+SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& data, double dt) {
+  // stresses and internal forces at x(n); an inverted element stops the step before any node
+  // moves
+  run_element_loop(model, state, data, false);
+  if (data.status != SolidStatus::kOk) return data.status;
+  const double c = 0.5 * dt * model.damping_alpha;
+  auto advance = [&](int n) { return advance_node(model, state, data, n, dt, c); };
+  run_node_loop(model, &state, data, advance);
+  return SolidStatus::kOk;
 }
 
 }  // namespace kneesim::engine::solid

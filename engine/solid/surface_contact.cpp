@@ -29,7 +29,9 @@ SurfaceContact make_surface_contact(const SolidModel& model,
   c.friction = friction;
   c.slip_regularization = slip_regularization;
   const double modulus = model.material.dilatational_modulus();
+  c.index_of_node.assign(model.num_nodes(), -1);
   for (const auto& [node, al] : per_node) {
+    c.index_of_node[node] = static_cast<int>(c.nodes.size());
     c.nodes.push_back(node);
     c.area.push_back(al.first);
     c.stiffness.push_back(modulus * al.first / al.second);
@@ -44,6 +46,10 @@ SurfaceContactData make_surface_contact_data(const SurfaceContact& contact) {
   d.force.assign(n, Eigen::Vector3d::Zero());
   d.friction_force.assign(n, Eigen::Vector3d::Zero());
   d.body_velocity.assign(n, Eigen::Vector3d::Zero());
+  d.position.assign(n, Eigen::Vector3d::Zero());
+  d.wake_at.assign(n, 0.0);
+  d.sleep_scale.assign(n, 1.0);
+  d.checked_position.assign(n, Eigen::Vector3d::Zero());
   d.slip_speed.assign(n, 0.0);
   return d;
 }

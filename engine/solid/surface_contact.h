@@ -27,6 +27,7 @@ namespace kneesim::engine::solid {
 
 struct SurfaceContact {
   std::vector<int> nodes;            // surface nodes that can touch, ascending
+  std::vector<int> index_of_node;    // position in `nodes` of each solid node, -1 if absent
   std::vector<double> area;          // tributary area [m^2], per surface node
   std::vector<double> stiffness;     // penalty k_n [N/m], per surface node
   double friction = 0.0;             // Coulomb coefficient [-]
@@ -49,6 +50,14 @@ struct SurfaceContactData {
   std::vector<Eigen::Vector3d> friction_force;  // friction on the node, where the owner
                                                 // computes it as a force (knee step) [N]
   std::vector<Eigen::Vector3d> body_velocity;   // of the rigid body at the node [m/s]
+  std::vector<Eigen::Vector3d> position;   // of the node where its contact was evaluated [m]
+  // the knee's sleep schedule of out-of-contact nodes (engine/insert_solid.cpp): the node is
+  // sampled again once (wake_at - motion) sleep_scale <= |x - checked_position|. `sleep` off
+  // samples every node every step (the test that the schedule changes no result)
+  bool sleep = true;
+  std::vector<double> wake_at;             // motion value [m]
+  std::vector<double> sleep_scale;         // >= 1 [-]
+  std::vector<Eigen::Vector3d> checked_position;  // x when last sampled [m]
   std::vector<double> slip_speed;          // tangential slip speed [m/s]
   Eigen::Vector3d total_force = Eigen::Vector3d::Zero();  // normal forces on the solid [N]
   double peak_pressure = 0.0;              // [Pa]

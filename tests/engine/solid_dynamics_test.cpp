@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <tuple>
 
 #include "solid_fixtures.h"
 
@@ -198,34 +199,50 @@ TEST_CASE("hex8 mesh frequencies stay below the stable-step estimate") {
   }
 }
 
-TEST_CASE("hex8 solid steps are bit-identical with 1 and 2 threads") {
+TEST_CASE("hex8 solid steps are bit-identical for any thread and range count") {
+  // reference: the one-range, one-thread run, bit for bit; the ranges change where the nodal
+  // sums are formed (in place or in slots) and which thread runs them, never their order
   const Eigen::Vector3d size(0.01, 0.006, 0.008);
   test::BoxMesh mesh = test::make_box(6, 4, 5, size);
   test::distort_interior(mesh, 0.25, size);
   std::vector<uint8_t> fix(mesh.nodes.size(), 0);
   for (size_t n = 0; n < mesh.nodes.size(); ++n)
     if (mesh.nodes[n].y() == 0.0) fix[n] = kFixAll;
-  auto run_threads = [&](int threads) {
+  auto run_threads = [&](int threads, int ranges, bool solo) {
     SolidOptions options;
     options.threads = threads;
     options.damping_alpha = 1e4;
-    const SolidModel model = make_solid_model(mesh.nodes, mesh.elements, test::make_uhmwpe_plastic(),
-                                              options, fix);
+    SolidModel model = make_solid_model(mesh.nodes, mesh.elements, test::make_uhmwpe_plastic(),
+                                        options, fix);
+    cut_solid_ranges(model, ranges);
+    REQUIRE(model.ranges == ranges);
     SolidState state = make_solid_state(model);
     SolidData data = make_solid_data(model);
+    if (data.team.get()) data.team.get()->force_solo(solo);
     // the top suddenly pressed (12 MPa) and sheared: the dynamic overshoot yields it
     add_face_load(mesh, 1, mesh.ny, Eigen::Vector3d(1e6, -12e6, 0.5e6),
                   size.x() / mesh.nx * size.z() / mesh.nz, data);
     REQUIRE(run(model, state, data, 1500, 0.7));
-    return state;
+    return std::make_pair(state, data.kinetic_energy);
   };
-  const SolidState a = run_threads(1), b = run_threads(2);
+  const auto [a, kinetic] = run_threads(1, 1, false);
   double alpha_max = 0.0;
   for (double x : a.alpha) alpha_max = std::max(alpha_max, x);
   CHECK(alpha_max > 0.0);  // the run went plastic
-  CHECK(std::memcmp(a.position.data(), b.position.data(), a.position.size() * sizeof(Eigen::Vector3d)) == 0);
-  CHECK(std::memcmp(a.velocity.data(), b.velocity.data(), a.velocity.size() * sizeof(Eigen::Vector3d)) == 0);
-  CHECK(std::memcmp(a.alpha.data(), b.alpha.data(), a.alpha.size() * sizeof(double)) == 0);
+  // 120 elements are 15 batches: up to 15 ranges (the build itself keeps 64 batches per range)
+  for (auto [threads, ranges, solo] : {std::tuple{2, 2, false}, std::tuple{2, 5, false},
+                                       std::tuple{3, 3, false}, std::tuple{4, 15, false},
+                                       std::tuple{3, 3, true}}) {
+    CAPTURE(threads);
+    CAPTURE(ranges);
+    CAPTURE(solo);
+    const auto [b, kinetic_b] = run_threads(threads, ranges, solo);
+    CHECK(std::memcmp(a.position.data(), b.position.data(), a.position.size() * sizeof(Eigen::Vector3d)) == 0);
+    CHECK(std::memcmp(a.velocity.data(), b.velocity.data(), a.velocity.size() * sizeof(Eigen::Vector3d)) == 0);
+    CHECK(std::memcmp(a.alpha.data(), b.alpha.data(), a.alpha.size() * sizeof(double)) == 0);
+    CHECK(std::memcmp(a.plastic_strain.data(), b.plastic_strain.data(), a.plastic_strain.size() * sizeof(Sym6)) == 0);
+    CHECK(std::memcmp(&kinetic, &kinetic_b, sizeof kinetic) == 0);
+  }
 }
 
 TEST_CASE("an element inverting during a run stops the step with its id") {

@@ -19,8 +19,10 @@
 namespace kneesim::diagnosis {
 namespace {
 
-// the approximation check: the full geometry-updating wear loop (`kneesim wear`) with the
-// extended model's law on the calibration condition, against the linear prediction
+// the approximation check: the full geometry-updating wear loop (`kneesim wear`) on the
+// calibration condition under the law the extended model predicts by (KneeWearTable::loop_law:
+// the config's [wear] law for the baseline and creep, the effect's law otherwise), against the
+// linear prediction; creep moves no surface and is left out of both sides
 nlohmann::json check_linear_wear(const DiagnosisCase& c,
                                  const DiagnosisResult& r,
                                  const KneeWearTables& tables,
@@ -34,37 +36,17 @@ nlohmann::json check_linear_wear(const DiagnosisCase& c,
   const auto& fit = r.extended();
   const Eigen::VectorXd b = fit.params.head(1), ep = fit.params.tail(fit.params.size() - 1);
   KneeWearParams p = knee_wear_params(fit.effect, b, ep, p_ref);
+  if (p.effect == Effect::creep) p.effect = Effect::none;  // the wear part
   wear::WearOptions o;
   o.total_cycles = std::max(1L, std::lround(cycles));
   o.update_every = std::max(1L, o.total_cycles / updates);
-  o.law.wear_factor = p.k;
-  o.law.friction = tables.at(condition)->friction();
-  switch (fit.effect) {
-    case Effect::pressure_dependent_wear:
-      o.law.law = wear::WearLaw::kPressureDependent;
-      o.law.alpha = p.pressure_exponent;
-      o.law.p_ref = p_ref;
-      break;
-    case Effect::cross_shear:
-      o.law.law = wear::WearLaw::kCrossShear;
-      o.law.beta = p.cross_shear_gain;
-      break;
-    case Effect::running_in:
-      o.law.law = wear::WearLaw::kRunningIn;
-      o.law.running_in_excess = p.running_in_excess;
-      o.law.running_in_cycles = p.running_in_cycles;
-      break;
-    default:  // creep adds depth outside the loop: check the Archard part
-      o.law.law = wear::WearLaw::kArchard;
-      p.effect = Effect::none;
-      break;
-  }
+  o.law = tables.at(condition)->loop_law(p);
   const wear::WearResult w = wear::run_wear(models::build_model(configs.at(condition)), o);
   nlohmann::json j;
   j["condition"] = condition;
   j["cycles"] = static_cast<double>(o.total_cycles);
   j["updates"] = static_cast<int>(w.records.size()) - 1;
-  j["law"] = std::string(effect_name(p.effect));
+  j["law"] = std::string(wear::wear_law_name(o.law.law));
   if (w.status != engine::StepStatus::kOk || w.records.empty()) {
     j["status"] = "failed: " + w.message;
     return j;
@@ -119,7 +101,11 @@ KneeWearDiagnosisReport run_knee_wear_diagnosis(const KneeWearDiagnosisOptions& 
   const int states = tables.begin()->second->geometry_states();
   std::string md = "## Forward model and its approximation\n\n" +
                    (states > 1
-                        ? "Each condition was simulated along its own Archard wear loop to " +
+                        ? "Each condition was simulated along its own wear loop (the "
+                          "config's law, " +
+                              std::string(wear::wear_law_name(
+                                  tables.begin()->second->law().law)) +
+                              ") to " +
                               fmt("%.1f", kPathVolumeMargin) + " times its largest measured "
                               "volume, one cycle recorded on the pristine insert and after each "
                               "of " + std::to_string(states - 1) + " updates (" +

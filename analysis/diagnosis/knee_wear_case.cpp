@@ -193,7 +193,7 @@ DiagnosisCase make_knee_wear_case(MeasuredData data, const KneeWearTables& table
                  " (wear.law and its parameters, as `kneesim wear` runs it; k scales its "
                  "coefficient), ") +
       (states > 1
-           ? "following the geometry update (each condition's Archard wear loop recorded at " +
+           ? "following the geometry update (each condition's wear loop under that law recorded at " +
                  std::to_string(states) + " geometry states, pristine included, rates "
                  "interpolated in worn volume)"
            : std::string("wear linear in cycles on the pristine insert (one simulated cycle per "

@@ -43,8 +43,8 @@ std::map<std::string, models::Config> knee_condition_configs(const MeasuredData&
                                                              const std::vector<std::string>& sets);
 
 // simulates every condition once (the forward tables, pristine only), or, with
-// geometry_states > 0, also along its Archard wear loop to kPathVolumeMargin times the largest
-// volume `data` holds for it (knee_wear_table.h; k_ref from the library default)
+// geometry_states > 0, also along its wear loop (the config's law) to kPathVolumeMargin times
+// the largest volume `data` holds for it (knee_wear_table.h; k_ref from the library default)
 KneeWearTables make_knee_wear_tables(const std::map<std::string, models::Config>& configs,
                                      const MeasuredData& data = {}, int geometry_states = 0);
 

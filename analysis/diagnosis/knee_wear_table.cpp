@@ -54,10 +54,18 @@ KneeWearTable::KneeWearTable(const std::string& name, const models::Config& conf
   mean_pressure_ = work_ > 0.0 ? std::exp(lnp_sum / work_) : 0.0;
   mean_cross_shear_ = work_ > 0.0 ? cs_sum / work_ : 0.0;
 
-  // the geometry path: the condition's Archard wear loop, one recorded cycle per update
-  const double per_cycle = path.k_ref * sarkar_ * work_;  // Archard volume per cycle [m^3]
+  // the geometry path: the condition's wear loop under the config's law at k_ref, one
+  // recorded cycle per update; running-in and incubation weight the cycles, not the sites, so
+  // their geometry at a worn volume is Archard's (and the cycle counts below stay exact)
+  KneeWearParams at_ref;
+  at_ref.k = path.k_ref;
+  wear::WearOptions o;
+  o.law = loop_law(at_ref);
+  if (o.law.law == wear::WearLaw::kRunningIn || o.law.law == wear::WearLaw::kIncubation) {
+    o.law.law = wear::WearLaw::kArchard;
+  }
+  const double per_cycle = path.k_ref * r0.area.dot(r0.law_rate);  // the law's [m^3/cycle]
   if (path.states > 0 && path.target_volume > 0.0 && per_cycle > 0.0) {
-    wear::WearOptions o;
     const double total = path.target_volume / per_cycle;
     long done = 0;
     for (int j = 1; j <= path.states; ++j) {
@@ -66,9 +74,6 @@ KneeWearTable::KneeWearTable(const std::string& name, const models::Config& conf
       done = upto;
     }
     o.total_cycles = done;
-    o.law.law = wear::WearLaw::kArchard;
-    o.law.wear_factor = path.k_ref;
-    o.law.friction = friction_;
     std::vector<models::TriMesh> worn;
     std::vector<double> volumes;
     o.on_insert = [&worn](const models::TriMesh& insert) { worn.push_back(insert); };
@@ -187,6 +192,47 @@ KneeCycleRecord KneeWearTable::record(const engine::Model& model_in, double volu
   rec.spread.resize(static_cast<Eigen::Index>(varea.size()), m);
   rec.spread.setFromTriplets(trip.begin(), trip.end());
   return rec;
+}
+
+wear::WearLawParams KneeWearTable::loop_law(const KneeWearParams& p) const {
+  wear::WearLawParams law;
+  law.friction = friction_;
+  law.wear_factor = p.k;
+  switch (p.effect) {
+    case Effect::pressure_dependent_wear:
+      law.law = wear::WearLaw::kPressureDependent;
+      law.alpha = p.pressure_exponent;
+      law.p_ref = p.reference_pressure;
+      break;
+    case Effect::cross_shear:
+      law.law = wear::WearLaw::kCrossShear;
+      law.beta = p.cross_shear_gain;
+      break;
+    case Effect::running_in:
+      law.law = wear::WearLaw::kRunningIn;
+      law.running_in_excess = p.running_in_excess;
+      law.running_in_cycles = p.running_in_cycles;
+      break;
+    case Effect::incubation:
+      law.law = wear::WearLaw::kIncubation;
+      law.incubation_cycles = p.incubation_cycles;
+      break;
+    case Effect::none:
+    case Effect::creep:
+    case Effect::friction:
+    case Effect::restraint:
+    case Effect::load_convention:
+    case Effect::load_line:
+    case Effect::vv_moment:
+    case Effect::vv_alignment:
+      // the baseline: the config's law, its coefficient per unit of the material's k
+      law = law_;
+      wear::set_law_coefficient(law, wear::law_coefficient(law_) * p.k / law_.wear_factor);
+      law.wear_factor = p.k;
+      law.creep = false;
+      break;
+  }
+  return law;
 }
 
 Eigen::VectorXd KneeWearTable::element_depth_rate(const KneeCycleRecord& r,

@@ -4,18 +4,20 @@
 // Two forms (issue 14 item 6):
 //  - pristine only (one state): wear linear in cycles on the pristine geometry,
 //    V(N) = N V_1 with V_1 the volume of one observed cycle (after one settling cycle);
-//  - following the geometry update (several states): the condition's own Archard wear loop
-//    (wear/wear_loop.h, what `kneesim wear` runs) at a reference k is run once, and one cycle
-//    is recorded on the insert after each of its updates. The geometry is indexed by the worn
+//  - following the geometry update (several states): the condition's own wear loop under the
+//    config's [wear] law (wear/wear_loop.h, what `kneesim wear` runs, loop_law()) at a
+//    reference k is run once, and one cycle is recorded on the insert after each of its
+//    updates. The geometry is indexed by the worn
 //    volume V_s the loop had reached (not by cycles), so any k and any law can walk the same
 //    path: the per-cycle volume rate r_s(law) of each state is interpolated linearly in V, and
 //    dV/dN_eff = r(V) is integrated in closed form (on a segment with r = r_a + m (V - V_a):
 //    N = ln(r / r_a) / m); vertex depth rates are interpolated the same way. Why: under a
 //    pressure law the worn insert conforms, the pressure falls and the wear rate rises with
 //    cycles, which the pristine-linear form cannot follow (a hidden pressure law in loop-made
-//    data was named `none`). The approximation left: the path's geometry is Archard's at each
-//    worn volume (a law that redistributes wear reaches a somewhat different geometry at the
-//    same volume); beyond the last state the last rates hold.
+//    data was named `none`). The approximation left: the path's geometry is the config law's at
+//    each worn volume, so a candidate effect (which extends Archard) walks the baseline law's
+//    geometry (a law that redistributes wear reaches a somewhat different geometry at the same
+//    volume); beyond the last state the last rates hold.
 //
 // What is recorded per articular element (only elements that were in contact are kept):
 //  - sum of p ds over the cycle binned by ln p (kBins bins from 0.01 to 300 MPa), with the
@@ -63,14 +65,17 @@ struct KneeWearParams {
   double incubation_cycles = 2e5;  // N_i, incubation time constant [cycles]
 };
 
-// the geometry path of a condition: its Archard wear loop at k_ref until the worn volume
-// reaches target_volume, with `states` updates at cumulative cycle fractions (j / states)^1.5
-// (denser early, where the conformity changes fastest); one geometry state after each
+// the geometry path of a condition: its wear loop under the config's law (loop_law() at
+// k = k_ref; running-in and incubation, which only weight the cycles, walk Archard's path)
+// until the worn volume reaches target_volume, with `states` updates at cumulative cycle
+// fractions (j / states)^1.5 (denser early, where the conformity changes fastest); one
+// geometry state after each
 struct KneeGeometryPath {
   int states = 0;                 // worn geometry states; 0 = pristine only [-]
   double target_volume = 0.0;     // worn volume the path reaches [m^3]
-  double k_ref = 2.643e-16;       // wear factor of the loop [m^2/N] (sets only the loop's
-                                  // cycle counts: the states are indexed by volume)
+  double k_ref = 2.643e-16;       // k of the loop [m^2/N] (the law's coefficient scaled by
+                                  // k_ref over the material's k; sets only the loop's cycle
+                                  // counts: the states are indexed by volume)
 };
 
 // one cycle simulated on one insert geometry
@@ -92,7 +97,8 @@ class KneeWearTable {
   static constexpr int kBins = 48;
 
   // simulates `config` (one settling and one observed cycle) and records the cycle; with a
-  // path, also runs the Archard wear loop and records a cycle after each of its updates;
+  // path, also runs the condition's wear loop (the config's law) and records a cycle after
+  // each of its updates;
   // throws std::runtime_error when a simulation stops on numerical trouble
   KneeWearTable(const std::string& name, const models::Config& config,
                 const KneeGeometryPath& path = {});
@@ -119,6 +125,14 @@ class KneeWearTable {
   double friction() const { return friction_; }             // [-]
   // the config's [wear] law (wear::make_wear_law): the baseline the effects are judged against
   const wear::WearLawParams& law() const { return law_; }
+  // the law `kneesim wear` runs for the parameters p on this condition, what volume(p, ..)
+  // approximates: for the baseline (effect none) and creep the config's law with its
+  // coefficient scaled by p.k over the material's k (contact_area: C p.k / k); for
+  // pressure_dependent_wear, cross_shear, running_in and incubation Archard extended by the
+  // effect under the law of that name (the effect library's definition, p_ref =
+  // p.reference_pressure). Creep is off: it moves no surface, so the loop's volume and depth
+  // are the wear part
+  wear::WearLawParams loop_law(const KneeWearParams& p) const;
   double period() const { return period_; }                 // [s]
   double max_penetration() const { return states_.front().max_penetration; }  // elastic [m]
   double work() const { return work_; }                     // sum A p ds over the cycle [J]

@@ -95,11 +95,71 @@ TEST_CASE("the diagnosis baseline is the config's wear law: equal to the wear lo
     diagnosis::KneeWearParams p;  // effect none: the baseline
     p.k = o.law.wear_factor;
     CHECK(table.volume(p, 100'000) ==
-          doctest::Approx(w.records.back().volume_depth).epsilon(1e-9));
+          doctest::Approx(w.records.back().volume_depth).epsilon(1e-9).scale(0));
     // and not Archard's (the law matters): gain 15 moves the volume by over 5 %
     if (std::string(law_name) == "cross_shear") {
       const double archard = wear::sarkar_factor(table.friction()) * table.work() * p.k * 1e5;
       CHECK(table.volume(p, 100'000) / archard - 1.0 > 0.05);
+    }
+  }
+}
+
+TEST_CASE("the diagnosis' geometry path and loop check follow the config's wear law") {
+  // Reference: wear::run_wear (`kneesim wear`) with the law wear::make_wear_law gives for the
+  // same config (cross-shear gain 15; contact area C 2e-9, about Archard's volume), 2 Mc with
+  // an update every 0.25 Mc. The table follows its own wear loop under that law (4 worn
+  // states, the command's default, to 1.5 times the loop's volume) and must predict the
+  // loop's depth-integral volume within 3 % (the tolerance of the Archard case above; rates
+  // interpolated in worn volume against the loop's rate held over each update; measured
+  // +0.5 % and +1.8 %) and its maximum depth within 10 % (measured -6.8 % and -1.4 %: the
+  // deepest vertex of a 3 mm mesh under the cross-shear law moves between states). The law
+  // KneeWearTable::loop_law gives for the baseline (what the diagnosis' check against the
+  // loop runs) is the config's, its coefficient scaled by the fitted k; an Archard loop would
+  // differ from the cross-shear prediction by over 5 %, checked below.
+  for (const char* law_name : {"cross_shear", "contact_area"}) {
+    CAPTURE(law_name);
+    diagnosis::MeasuredData d;
+    d.source = "law path check";
+    d.rows.push_back({"iso", "", "volume_mm3", 0.0, 0.0, 2});
+    std::vector<std::string> sets = {"wear.law=\"" + std::string(law_name) + "\""};
+    if (std::string(law_name) == "cross_shear") sets.push_back("wear.cross_shear_gain=15");
+    if (std::string(law_name) == "contact_area") sets.push_back("material.area_wear_coefficient=2e-9");
+    const auto configs = diagnosis::knee_condition_configs(d, test::knee_test_config(), sets);
+    const models::Config& config = configs.at("iso");
+    const models::BuiltModel built = models::build_model(config);
+    wear::WearOptions o;
+    o.total_cycles = 2'000'000;
+    o.update_every = 250'000;
+    o.law = wear::make_wear_law(config.wear, built);
+    const wear::WearResult w = wear::run_wear(built, o);
+    REQUIRE(w.status == engine::StepStatus::kOk);
+    const double n = w.records.back().cycles;
+    const double v_loop = w.records.back().volume_depth;
+
+    diagnosis::KneeGeometryPath path;
+    path.states = 4;
+    path.target_volume = diagnosis::kPathVolumeMargin * v_loop;
+    const diagnosis::KneeWearTable table("iso", config, path);
+    REQUIRE(table.geometry_states() == 5);
+    diagnosis::KneeWearParams p;  // the baseline at the material's k
+    p.k = o.law.wear_factor;
+    CHECK(table.volume(p, n) == doctest::Approx(v_loop).epsilon(0.03).scale(0));
+    CHECK(table.max_depth(p, n) ==
+          doctest::Approx(w.records.back().max_depth).epsilon(0.10).scale(0));
+    // the path reached its target under the law (its last state beyond the loop's volume)
+    CHECK(table.state_volume(4) > v_loop);
+
+    // the check's loop law at another k: the config's law, its coefficient scaled by k
+    p.k = 1.5 * o.law.wear_factor;
+    const wear::WearLawParams check = table.loop_law(p);
+    CHECK(wear::wear_law_name(check.law) == law_name);
+    CHECK(wear::law_coefficient(check) ==
+          doctest::Approx(1.5 * wear::law_coefficient(o.law)).epsilon(1e-12).scale(0));
+    CHECK(check.beta == o.law.beta);
+    CHECK_FALSE(check.creep);
+    if (std::string(law_name) == "cross_shear") {
+      const double archard = wear::sarkar_factor(table.friction()) * table.work() * p.k * 1e5;
+      CHECK(table.volume(p, 1e5) / archard - 1.0 > 0.05);
     }
   }
 }

@@ -2,8 +2,9 @@
 // (issue 25): the same law, parameters and inputs give the identical volume and depth in wear
 // and compare (compare runs each material through the same library call as wear: any
 // difference would be a law not reaching it) and a study trial equals the wear run of its
-// inputs; a law that does not exist and a parameter the law does not have are refused with
-// exit 2 and one line naming the key.
+// inputs; a law that does not exist, a parameter the law does not have, one out of its range
+// and creep with a non-positive time constant are refused, on the command line and in a config
+// file, with exit 2 and one line naming the key (and the file).
 #include <doctest/doctest.h>
 
 #include <nlohmann/json.hpp>
@@ -109,6 +110,62 @@ TEST_CASE("bad wear-law input on the command line: exit 2, one line naming the k
           "wear.creep_time_s");
   refused({"study", "--wear", "--wear-law", "contact_area", "--out", (tmp.path / "e").string()},
           "area_wear_coefficient");
+}
+
+TEST_CASE("bad wear-law keys in a config file: exit 2, one line naming file, key, value, range") {
+  // Every command that reads a config (run, wear, compare, study --wear, diagnose knee-wear)
+  // refuses, before simulating: a law that does not exist, a parameter the law does not have,
+  // a parameter outside its range, and creep with a non-positive time constant (0 and
+  // negative). The message names the file and line, the key, the value and what is allowed.
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  spit(tmp.path / "measured.csv", "condition,cycles,volume_mm3\niso,1000000,10\n");
+  struct BadFile {
+    const char* name;
+    const char* toml;
+    std::vector<std::string> fragments;
+  };
+  const std::vector<BadFile> files = {
+      {"no_law.toml", "[wear]\nlaw = \"magic\"\n",
+       {"no_law.toml:2", "'wear.law'", "\"magic\"", "\"archard\"", "\"cross_shear\"",
+        "\"contact_area\"", "\"incubation\""}},
+      {"foreign_param.toml", "[wear]\nlaw = \"running_in\"\ncross_shear_gain = 2.0\n",
+       {"foreign_param.toml:3", "'wear.cross_shear_gain'", "not a parameter", "\"running_in\"",
+        "wear.running_in_excess, wear.running_in_cycles"}},
+      {"gain_range.toml", "[wear]\nlaw = \"cross_shear\"\ncross_shear_gain = -1.0\n",
+       {"gain_range.toml:3", "'wear.cross_shear_gain'", "= -1", "[0, 1000]"}},
+      {"exponent_range.toml", "[wear]\nlaw = \"pressure_dependent_wear\"\npressure_exponent = 7\n",
+       {"exponent_range.toml:3", "'wear.pressure_exponent'", "= 7", "[-3, 4]"}},
+      {"creep_zero.toml", "[wear]\nlaw = \"cross_shear\"\ncreep = true\ncreep_time_s = 0.0\n",
+       {"creep_zero.toml:4", "'wear.creep_time_s'", "= 0 ", "[0.001, 1e+12]"}},
+      {"creep_negative.toml", "[wear]\ncreep = true\ncreep_time_s = -5.0\n",
+       {"creep_negative.toml:3", "'wear.creep_time_s'", "= -5", "[0.001, 1e+12]"}},
+  };
+  for (const BadFile& f : files) {
+    const fs::path config = tmp.path / f.name;
+    spit(config, f.toml);
+    const std::vector<std::vector<std::string>> commands = {
+        {"run", config.string(), "--no-plots"},
+        {"wear", config.string(), "--no-plots"},
+        {"compare", config.string(), "--no-plots"},
+        {"study", config.string(), "--wear"},
+        {"diagnose", "knee-wear", "--config", config.string(), "--measured",
+         (tmp.path / "measured.csv").string()},
+    };
+    for (const auto& command : commands) {
+      std::vector<std::string> args = command;
+      args.push_back("--out");
+      args.push_back((tmp.path / "out").string());
+      const Result r = run_kneesim(args, tmp.path, "bad");
+      CAPTURE(f.name);
+      CAPTURE(command[0]);
+      CAPTURE(r.err);
+      CHECK(r.exit_code == 2);
+      CHECK(count_lines(r.err) == 1);
+      for (const auto& fragment : f.fragments) CHECK(r.err.find(fragment) != std::string::npos);
+      CHECK(!fs::exists(tmp.path / "out" / "summary.json"));
+    }
+  }
 }
 
 TEST_CASE("every wear law: a kneesim study --wear trial equals kneesim wear of its inputs") {

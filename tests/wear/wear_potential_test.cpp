@@ -83,14 +83,15 @@ TEST_CASE("wear potential of a uniform contact: closed form per law") {
     for (int s = 0; s < steps; ++s) acc.observe(m, engine::State{}, d);
     const double expected =
         wear::sarkar_factor(mu) * std::pow(p / law.p_ref, -alpha) * p * area * v * m.dt * steps;
-    CHECK(acc.wear_potential() == doctest::Approx(expected).epsilon(1e-12));
-    CHECK(acc.sliding_distance() == doctest::Approx(v * m.dt * steps).epsilon(1e-12));
+    CHECK(acc.wear_potential() == doctest::Approx(expected).epsilon(1e-12).scale(0));
+    CHECK(acc.sliding_distance() == doctest::Approx(v * m.dt * steps).epsilon(1e-12).scale(0));
     CHECK(acc.mean_cross_shear() == doctest::Approx(0.0));
     // volume of the cycle = k x potential: the accumulator's own depth field agrees
     double volume = 0.0;
     const std::vector<double> depth = acc.depth_per_cycle();
     for (int e = 0; e < m.insert.size(); ++e) volume += depth[e] * m.insert.area[e];
-    CHECK(volume == doctest::Approx(law.wear_factor * acc.wear_potential()).epsilon(1e-12));
+    CHECK(volume ==
+          doctest::Approx(law.wear_factor * acc.wear_potential()).epsilon(1e-12).scale(0));
   }
 }
 
@@ -116,11 +117,13 @@ TEST_CASE("k x wear potential = the run's volume on the pristine geometry, every
     const double n_eff = wear::effective_cycles(o.law, 0.0, static_cast<double>(cycles));
     // closed form: the whole depth field came from one cycle on the pristine geometry
     CHECK(worn.volume_depth ==
-          doctest::Approx(o.law.wear_factor * pristine.wear_potential * n_eff).epsilon(1e-9));
+          doctest::Approx(o.law.wear_factor * pristine.wear_potential * n_eff)
+              .epsilon(1e-9)
+              .scale(0));
     CHECK(o.law.wear_factor * wear::calc_run_wear_potential(r.records, o.law) ==
-          doctest::Approx(worn.volume_depth).epsilon(1e-9));
+          doctest::Approx(worn.volume_depth).epsilon(1e-9).scale(0));
     // and the geometry's enclosed-volume loss is the same recession (bookkeeping, 1 %)
-    CHECK(worn.volume == doctest::Approx(worn.volume_depth).epsilon(0.01));
+    CHECK(worn.volume == doctest::Approx(worn.volume_depth).epsilon(0.01).scale(0));
   }
 }
 

@@ -44,7 +44,20 @@ COMMANDS = [
     "run --cycles 1 --set implant.edge_length_mm=3 --out imm --quiet",
     "wear --cycles 2 --update-every 1 --set implant.edge_length_mm=3 --out imm/sub --quiet",
     "study --out imm/sub",
+    "wear no_law.toml --out o_law1",
+    "compare foreign_param.toml --out o_law2",
+    "run gain_range.toml --out o_law3",
+    "study creep_zero.toml --wear --out o_law4",
 ]
+
+# wear-law keys in a config file: a law that does not exist, a parameter the law does not
+# have, one out of its range, creep with a zero time constant
+LAW_CONFIGS = {
+    "no_law.toml": '[wear]\nlaw = "magic"\n',
+    "foreign_param.toml": '[wear]\nlaw = "running_in"\ncross_shear_gain = 2.0\n',
+    "gain_range.toml": '[wear]\nlaw = "cross_shear"\ncross_shear_gain = -1.0\n',
+    "creep_zero.toml": '[wear]\nlaw = "cross_shear"\ncreep = true\ncreep_time_s = 0.0\n',
+}
 
 
 def read_stl(path):
@@ -109,6 +122,8 @@ def run(v):
     open("three.csv", "w").write(rows)
     open("bom.csv", "w", encoding="utf-8-sig").write(rows)
     open("afile", "w").write("a file, not a folder\n")
+    for name, text in LAW_CONFIGS.items():
+        open(name, "w").write(text)
     os.makedirs("imm", exist_ok=True)
     subprocess.run(["chattr", "-i", "imm"], capture_output=True)
     if subprocess.run(["chattr", "+i", "imm"], capture_output=True).returncode != 0:

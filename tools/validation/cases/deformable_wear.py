@@ -25,6 +25,8 @@ def run(v):
     v.figure("stanmore_def_mm3", d["volume_mm3"], "mm3")
     v.figure("stanmore_diff_pct", 100 * (d["volume_mm3"] / r["volume_mm3"] - 1), "%")
     v.figure("stanmore_def_bookkeeping_pct", 100 * d["volume_bookkeeping_rel_diff"], "%")
+    for k in ("kinetic_to_internal_max", "kinetic_to_internal_cycle", "kinetic_to_internal_max_all_cycles"):
+        v.figure(f"stanmore_def_{k}_pct", 100 * d[k], "%")
     ms = ["--set", "rig.preset=materials_study", "--no-plots", "--quiet"]
     cr = {x["material"]: x for x in v.csv(v.kneesim("ms_rigid", ["compare"] + TWO + ms), "comparison.csv")}
     cd = {x["material"]: x for x in v.csv(v.kneesim("ms_def", ["compare"] + TWO + DEF + ms), "comparison.csv")}
@@ -39,7 +41,8 @@ TABLES = {
 | check | reference | result |
 |---|---|---|
 | 1 080 elements, 0.2 s cycle, 1 Mc in 2 updates | hex volume loss vs depth integral within 1 % | {coarse_volume_mm3:.3f} / {coarse_depth_volume_mm3:.3f} mm³ ({coarse_bookkeeping_pct:+.2f} %) |
-| kinetic / internal energy of the solid: pristine cycle max / sum, last geometry max / sum, every cycle max | quasi-static below 5 % | {coarse_kinetic_to_internal_max_pct:.2f} / {coarse_kinetic_to_internal_cycle_pct:.3f} %, {coarse_final_kinetic_to_internal_max_pct:.2f} / {coarse_final_kinetic_to_internal_cycle_pct:.3f} %, {coarse_kinetic_to_internal_max_all_cycles_pct:.2f} % |
+| kinetic / internal energy of the solid at this 0.2 s cycle (5 times the gait's speed, for economy): pristine cycle max / sum, last geometry max / sum, every cycle max | none: the check above needs no quasi-statics; kinetic energy grows with the speed squared | {coarse_kinetic_to_internal_max_pct:.2f} / {coarse_kinetic_to_internal_cycle_pct:.3f} %, {coarse_final_kinetic_to_internal_max_pct:.2f} / {coarse_final_kinetic_to_internal_cycle_pct:.3f} %, {coarse_kinetic_to_internal_max_all_cycles_pct:.2f} % |
+| the same at the gait's 1 s cycle (stanmore, UHMWPE, 2 mm elements, 5 Mc in 2 updates, below): pristine cycle max / sum, every cycle max | quasi-static: below 5 % | {stanmore_def_kinetic_to_internal_max_pct:.3f} / {stanmore_def_kinetic_to_internal_cycle_pct:.4f} %, {stanmore_def_kinetic_to_internal_max_all_cycles_pct:.3f} % |
 """,
     "two_updates": """
 | rig, material | rigid (mm³) | deformable (mm³) |

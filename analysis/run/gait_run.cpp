@@ -103,8 +103,10 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   const fs::path& out = job.out;
   // the measured curve is read before the simulation: a bad file costs no run
   const io::Table measured = read_measured_kinematics(config);
-  // a folder that cannot take the results is found before the model is built
+  // a folder that cannot take the results, or a law the material has no coefficient for, is
+  // found before the model is built and the folder's old outputs are cleared
   io::check_output_folder(out);
+  wear::make_wear_law(config.wear, config.material, config.material.friction);
   models::BuiltModel built = models::build_model(config);
   if (job.on_built) job.on_built(built);
   clear_outputs(out);

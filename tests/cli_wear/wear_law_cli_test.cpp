@@ -110,6 +110,14 @@ TEST_CASE("bad wear-law input on the command line: exit 2, one line naming the k
           "wear.creep_time_s");
   refused({"study", "--wear", "--wear-law", "contact_area", "--out", (tmp.path / "e").string()},
           "area_wear_coefficient");
+  // run refuses the law before building the model and before clearing the folder's outputs of
+  // an earlier run (it cleared them and printed its banner first)
+  fs::create_directories(tmp.path / "f");
+  spit(tmp.path / "f" / "summary.json", "{}");
+  refused({"run", "--set", "wear.law=\"contact_area\"", "--cycles", "1", "--no-plots", "--out",
+           (tmp.path / "f").string()},
+          "area_wear_coefficient");
+  CHECK(fs::exists(tmp.path / "f" / "summary.json"));
 }
 
 TEST_CASE("bad wear-law keys in a config file: exit 2, one line naming file, key, value, range") {

@@ -339,7 +339,7 @@ Eigen::VectorXd heldout_with_nuisance(const Problem& pb, const Eigen::VectorXd& 
   for (size_t j = 0; j < pb.em.nuisance.size(); ++j) {
     const auto jj = static_cast<Eigen::Index>(j);
     if (pb.em.nuisance[j].prior_sd > 0.0) {
-      if (jj < beta_train.size()) p += beta_train[jj] * x.col(jj);
+      if (jj < beta_train.size() && pb.em.nuisance[j].carried_to_heldout) p += beta_train[jj] * x.col(jj);
     } else {
       free.push_back(jj);
     }

@@ -138,7 +138,8 @@ ModelFit fit_candidate_fixed_noise(const Problem& pb, const Eigen::VectorXd& y, 
                                    bool heldout);
 // the held-out prediction of `test` rows from a model's prediction there: the prior-bound
 // nuisance terms from the training rows (`beta_train`: the instrument's calibration, the same
-// over the record) and the free ones (an offset, a drift: not predictable from other rows)
+// over the record; at their prior mean 0 where NuisanceTerm::carried_to_heldout is false) and
+// the free ones (an offset, a drift: not predictable from other rows)
 // fitted on the test rows themselves, for every model and the trivial predictor alike
 Eigen::VectorXd heldout_with_nuisance(const Problem& pb, const Eigen::VectorXd& y,
                                       const std::vector<int>& test, const Eigen::VectorXd& pred,

@@ -54,7 +54,7 @@ ErrorModel select_error_model(const ErrorModel& full, const std::string& name,
                          " is outside the allowed range [0, 1e6] (0: a free term).");
       }
       for (auto& own : m.nuisance) {
-        if (own.prior_key == key) own.prior_sd = value;
+        if (own.prior_key == key) own.prior_sd = value * own.prior_scale;
       }
     }
     if (!known) {

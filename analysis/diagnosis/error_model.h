@@ -57,6 +57,15 @@ struct NuisanceTerm {
   // unit]; 0 where it does not act
   std::function<Eigen::VectorXd(const std::vector<int>& rows, const Eigen::VectorXd& prediction)>
       column;
+  double prior_scale = 1.0;  // prior_sd = prior_scale x the key's value (a term that is the
+                             // difference of two terms of the key's sd: sqrt(2))
+  // a prior-bound term in a held-out prediction: true, its value fitted on the training rows
+  // (a calibration the same over the record); false, its prior mean 0: the held-out score then
+  // judges the models without the term, and the term is judged by its prior in the likelihood
+  // only (a term whose span holds a candidate's signal: carried, it lets `none` borrow any
+  // correction the training rows ask for, unbounded by the prior, and the held-out gate cannot
+  // see the candidate; forces_case.cpp)
+  bool carried_to_heldout = true;
 };
 
 // the error model a case offers (its "instrument" model) and the reduced ones selected by name

@@ -16,6 +16,10 @@ constexpr const char* kQuantity = "medial_force_N";
 constexpr double kMinAxialShare = 0.02;
 // largest gap in gait phase the second cycle may have for the cycle-against-cycle rule [%]
 constexpr double kMaxPhaseGap = 10.0;
+// prior sd of each cell group's gain error and of each crosstalk fraction [-]: instrumented
+// implants measure to 1-2 % of their calibration range including crosstalk (Bergmann et al.,
+// J Biomech Eng 130(2):021009, 2008); --noise-param gain_crosstalk_sd
+constexpr double kGainCrosstalkSd = 0.02;
 
 std::string config_name(const models::Config& c) {
   return c.file.empty() ? std::string("built-in config") : c.file.string();
@@ -253,18 +257,44 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
          [rows_column, time, t_mid](const std::vector<int>& rows, const Eigen::VectorXd&) {
            return rows_column(rows, [&](size_t, int r) { return time[static_cast<size_t>(r)] - t_mid; });
          }},
-        {"medial_gain", "gain error of the medial cells, per unit of the predicted medial force "
-                        "[-]", 0.02, "gain_crosstalk_sd",
-         [rows_column](const std::vector<int>& rows, const Eigen::VectorXd& pred) {
-           return rows_column(rows, [&](size_t i, int) { return pred[static_cast<Eigen::Index>(i)]; });
-         }},
-        {"lateral_crosstalk", "crosstalk of the lateral cells into the medial reading, per unit "
-                              "of the predicted lateral force [-]", 0.02, "gain_crosstalk_sd",
+        // the cells' gain and crosstalk as they reach the residual medial - share x total:
+        // the medial reading m and the total t are read from the same cells, so with true
+        // forces M = s T and L = (1 - s) T, medial gains 1 + g_m, lateral 1 + g_l, crosstalk
+        // c_l of the lateral cells into the medial reading and c_m of the medial into the
+        // lateral, m - s t = s (1 - s) T (g_m - g_l) + c_l (1 - s)^2 T - c_m s^2 T to first
+        // order: a gain common to all cells cancels in the share, as it does in the
+        // trivial predictor (s from the prediction: pred / total)
+        {"gain_difference", "gain of the medial cells minus that of the lateral cells, per unit "
+                            "of s (1 - s) x the measured total [-]", kGainCrosstalkSd * std::sqrt(2.0),
+         "gain_crosstalk_sd",
          [rows_column, total](const std::vector<int>& rows, const Eigen::VectorXd& pred) {
            return rows_column(rows, [&](size_t i, int r) {
-             return total[static_cast<size_t>(r)] - pred[static_cast<Eigen::Index>(i)];
+             const double t = total[static_cast<size_t>(r)], p = pred[static_cast<Eigen::Index>(i)];
+             return t != 0.0 ? p * (t - p) / t : 0.0;
            });
-         }}};
+         },
+         std::sqrt(2.0), false},
+        {"crosstalk_lateral_to_medial", "crosstalk of the lateral cells into the medial reading, "
+                                        "per unit of (1 - s)^2 x the measured total [-]",
+         kGainCrosstalkSd, "gain_crosstalk_sd",
+         [rows_column, total](const std::vector<int>& rows, const Eigen::VectorXd& pred) {
+           return rows_column(rows, [&](size_t i, int r) {
+             const double t = total[static_cast<size_t>(r)], p = pred[static_cast<Eigen::Index>(i)];
+             return t != 0.0 ? (t - p) * (t - p) / t : 0.0;
+           });
+         },
+         1.0, false},
+        {"crosstalk_medial_to_lateral", "crosstalk of the medial cells into the lateral reading "
+                                        "(it enters the total), per unit of -s^2 x the measured "
+                                        "total [-]",
+         kGainCrosstalkSd, "gain_crosstalk_sd",
+         [rows_column, total](const std::vector<int>& rows, const Eigen::VectorXd& pred) {
+           return rows_column(rows, [&](size_t i, int r) {
+             const double t = total[static_cast<size_t>(r)], p = pred[static_cast<Eigen::Index>(i)];
+             return t != 0.0 ? -p * p / t : 0.0;
+           });
+         },
+         1.0, false}};
   }
   auto sur = std::make_shared<Surrogate>();
   sur->sim = sim;

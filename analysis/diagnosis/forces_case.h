@@ -27,14 +27,24 @@
 // Baseline: the rig as configured, no parameter refitted (the practitioner's rig offset).
 // Error model (error_model.h, "instrument"): the residuals of the record are correlated in
 // time (Ornstein-Uhlenbeck, one series over the whole record); nuisance terms of the load
-// cells: an offset and a linear drift of the medial reading (free), and the gain of the medial
-// cells and the crosstalk of the lateral cells into the medial reading, each a fraction of the
-// predicted medial or lateral force with a Gaussian prior of sd gain_crosstalk_sd (default
-// 0.02: instrumented implants measure to 1-2 % of their calibration range including crosstalk,
-// Bergmann et al., J Biomech Eng 130(2):021009, 2008; a fraction of the force here, an
-// approximation). A constant load-line shift moves the
-// medial share by a constant amount, as those two terms do, so below a size set by the prior
-// it cannot be told from the instrument; the detection limit reports that size.
+// cells: an offset and a linear drift of the medial reading (free), and the cells' gain and
+// crosstalk as they reach the residual medial - share x total. The medial reading and the
+// total are read from the same cells, so, to first order in the errors, with s the predicted
+// share and T the measured total: the gain of the medial cells minus that of the lateral ones
+// times s (1 - s) T (a gain common to all cells cancels in the share), the crosstalk of the
+// lateral cells into the medial reading times (1 - s)^2 T and that of the medial cells into
+// the lateral reading (which enters the total) times -s^2 T; each gain and crosstalk fraction
+// with a Gaussian prior of sd gain_crosstalk_sd (default 0.02: instrumented implants measure
+// to 1-2 % of their calibration range including crosstalk, Bergmann et al., J Biomech Eng
+// 130(2):021009, 2008; the gain difference sqrt(2) times that). A constant load-line shift moves
+// the medial share by a nearly constant amount (0.0236 per mm on the built-in implant, 6-9 % of
+// its signal outside the instrument's columns), which these terms also do: at noise of 20 N
+// and more it is identified through the prior only, from about 2 mm (docs/diagnosis.md,
+// forces case). The
+// gain and crosstalk terms are not carried into held-out predictions
+// (NuisanceTerm::carried_to_heldout): carried, `none` borrowed from the training cycle a
+// calibration correction of any size, unbounded by the prior, and predicted a load-line shift
+// on the held-out cycle as well as the effect did.
 // Held-out rule: fit on one cycle, predict the other, both ways; with a single cycle in the
 // file, interleaved 10 % gait-phase blocks (fit on the even blocks, predict the odd, and back).
 // The quantity fitted is the medial force (the total is the rig's input; the lateral force is

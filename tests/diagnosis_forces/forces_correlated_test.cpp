@@ -1,6 +1,6 @@
 // The forces diagnosis under instrument errors that are NOT its error model (issue 27), default
 // suite: four-cell synthetic records (forces_synthetic.h) with a hidden effect whose
-// identifiable signal is twice the record's noise RMS (a load-line shift three times: below) (the 1.2x tallies, with many seeds, are in
+// identifiable signal is twice the record's noise RMS (the 1.2x tallies, with many seeds, are in
 // forces_identification_long.cpp), and clean records. Required: the hidden effect named, clean
 // records named none; on clean records the rig (driven by the filtered measured total, its
 // share times the measured total) predicts the held-out cycle better than the trivial
@@ -8,6 +8,9 @@
 // losing, when the rig followed the raw noisy total); the detection limits are reported for
 // every candidate and both signs, finite, and `none` reads "no effect larger than" them.
 #include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
 
 #include "tests/diagnosis_forces/forces_synthetic.h"
 
@@ -30,15 +33,10 @@ TEST_CASE("forces: hidden effects at twice the noise are named under cell noise 
       {Effect::none, CellNoise::resonant, 23},      {Effect::load_line, CellNoise::crosstalk, 24},
       {Effect::vv_moment, CellNoise::pink, 25},     {Effect::vv_alignment, CellNoise::harmonic, 26}};
   for (const Trial& t : trials) {
-    // a load-line shift at 3x: with the calibrated UHMWPE law its reported detection limits
-    // are 2.1x and 2.6x the noise (the next test case's MESSAGEs; vv_moment and vv_alignment
-    // 0.8-1.3x): a shift moves the medial force nearly in proportion to the total, which the
-    // load cell's gain and crosstalk terms absorb, and at 2x it was named none
-    const double ratio = t.truth == Effect::load_line ? 3.0 : 2.0;
-    const ForcesSet s = bench.make_at_ratio(t.truth, ratio, t.noise, t.seed);
+    const ForcesSet s = bench.make_at_ratio(t.truth, 2.0, t.noise, t.seed);
     const ForcesDiagnosisReport rep = bench.diagnose(s, opt);
     const DiagnosisResult& r = rep.result;
-    MESSAGE(effect_name(t.truth) << " (" << cell_noise_name(t.noise) << ", seed " << t.seed
+    MESSAGE(effect_name(t.truth) << " (" << std::string(cell_noise_name(t.noise)) << ", seed " << t.seed
                                  << ", value " << s.value << ", noise " << s.noise_rms
                                  << " N, signal " << s.signal_rms << " N): named "
                                  << effect_name(r.effect()) << "; held-out RMSE rig "
@@ -71,6 +69,14 @@ TEST_CASE("forces: a clean record reports detection limits for every candidate a
     // gain and crosstalk terms also do: its limit may lie beyond the searched sizes (reported
     // as "not named up to"); the load line and the stance moment change the share's shape
     if (d.effect != Effect::vv_alignment) CHECK(d.reached);
+    // the load-line limit against where the hidden-effect records start naming it: under this
+    // family's noise (white_walk at 1.5 times its unit amplitude, 25-81 N RMS) fixed shifts of
+    // 1 mm are named in 0 of 10 records and of 2 mm in 10 of 10 (docs/validation.md, forces
+    // hidden-effect tests); the limit must lie within a factor 1.5 of that onset
+    if (d.effect == Effect::load_line) {
+      CHECK(std::abs(d.value) > 1.0 / 1.5);
+      CHECK(std::abs(d.value) < 2.0 * 1.5);
+    }
   }
   // the fitted error model's noise against the record's: the same size (within a factor 2)
   CHECK(r.detection.noise_rms > 0.5 * s.noise_rms);

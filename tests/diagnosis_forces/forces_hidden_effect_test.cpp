@@ -146,10 +146,8 @@ TEST_CASE("forces diagnosis: hidden load-line shifts and stance VV moments are n
     Noise noise;
   };
   // magnitudes a rig-to-patient comparison shows (the JW load line sits about 8 mm from the
-  // rig's); both signs; every noise model for every truth. The negative load-line shift is
-  // -6 mm: with the calibrated UHMWPE law the diagnosis reports a detection limit of about
-  // -4.0 mm for it on a clean record (forces_correlated_test's detection limits), and the
-  // former -4 mm trial, at that limit, was named none (gain vs trivial -0.30)
+  // rig's); both signs; every noise model for every truth (the load-line detection limit the
+  // diagnosis reports for a clean record is about 1.5-1.8 mm, forces_correlated_test)
   const std::vector<Trial> trials = {
       {Effect::none, 0.0, Noise::white},         {Effect::none, 0.0, Noise::drift},
       {Effect::none, 0.0, Noise::proportional},  {Effect::load_line, 6.0, Noise::white},
@@ -185,16 +183,14 @@ TEST_CASE("forces diagnosis: hidden load-line shifts and stance VV moments are n
       CHECK(e.params[0] == doctest::Approx(t.value).epsilon(0.15));
       CHECK(e.ci_low[0] <= t.value + 0.5);
       CHECK(e.ci_high[0] >= t.value - 0.5);
-      // the held-out gain against none with the instrument's terms (an offset and a drift
-      // refitted on the held-out cycle, gain and crosstalk carried over) absorb part of a
-      // load-line shift in none as well: a gain, not the 0.3 of the white error model. On the
-      // quasi-static rig they absorb more of it: the part none cannot follow,
-      // sqrt(none^2 - named^2) of the held-out RMSE, is 19 and 24 N for the 6 and 7 mm trials
-      // (26 and 56 N on the former heavy, damped carriages; gains 0.119 and 0.121, were 0.197
-      // and 0.407; the -4 mm trial 0.232 on both). Larger shifts are no remedy: from about
-      // 8 mm the lateral condyle lifts off at toe-off on this rig (8 mm fitted as 6.4, 8.5 mm
-      // named none), so the threshold is 0.1, below the gains measured on this rig
-      CHECK(rep.result.gain > 0.1);
+      // the held-out gain against none: the instrument's offset and drift are refitted on the
+      // held-out cycle, its gain and crosstalk are not carried over (at their prior mean 0,
+      // forces_case.h), so none cannot follow a load-line shift there by borrowing a
+      // calibration correction from the training cycle: gains 0.59-0.76 measured (with the
+      // calibration carried they were 0.12 for the 6 and 7 mm shifts, the none model absorbing
+      // the shift as a gain error). Larger shifts are no remedy: from about 8 mm the lateral
+      // condyle lifts off at toe-off on this rig (8 mm fitted as 6.4, 8.5 mm named none)
+      CHECK(rep.result.gain > 0.3);
       CHECK(rep.result.gain_vs_trivial > 0.0);
     }
   }
@@ -233,7 +229,8 @@ TEST_CASE("kneesim diagnose forces writes the diagnosis end to end") {
   REQUIRE(j.contains("error_model"));
   CHECK(j["error_model"]["name"] == "instrument");
   CHECK(j["error_model"]["correlation"] == "ornstein_uhlenbeck");
-  CHECK(j["error_model"]["nuisance"].size() == 4);
+  // offset, drift, gain difference, the two crosstalk directions
+  CHECK(j["error_model"]["nuisance"].size() == 5);
   REQUIRE(j.contains("detection"));
   CHECK(j["detection"]["limits"].size() == 6);
   CHECK(j["candidates"][0].contains("nuisance"));

@@ -2,7 +2,9 @@
 (tests/diagnosis_forces/forces_synthetic.h) whose cell errors are not the fit's error model:
 white noise plus a random-walk drift, crosstalk between non-neighbouring cells with gain
 errors, 1/f-like noise; hidden effects sized so that their identifiable signal is 1.2 times
-the record's noise RMS, and clean records."""
+the record's noise RMS, and clean records; and load-line shifts of fixed size under one noise
+level (white_walk at 1.5 times its unit amplitude, the medial reading's noise 25-81 N RMS) against
+the detection limit the diagnosis reports for a clean record of that family."""
 import re
 
 TITLE = "Forces hidden effects at 1.2x the noise under other cell-noise families"
@@ -10,7 +12,9 @@ LONG = True  # about 10-30 s per diagnosis
 FAMILIES = ["white_walk", "crosstalk", "pink"]
 EFFECTS = ["load_line", "vv_moment", "vv_alignment"]
 SEEDS_EFFECT = 5
-SEEDS_CLEAN = 5
+SEEDS_CLEAN = 8
+ONSET_MM = ["1", "1.5", "2", "3"]
+SEEDS_ONSET = 10
 
 
 def sweep(v, effects, seeds, first):
@@ -24,9 +28,23 @@ def sweep(v, effects, seeds, first):
     return re.findall(r"^== (\S+) (\S+) ratio [0-9.]+: named (\d+) of (\d+)$", out, re.M)
 
 
+def onset(v, mm):
+    env = {"KNEESIM_FORCES_FAMILIES": "white_walk", "KNEESIM_FORCES_EFFECTS": "load_line",
+           "KNEESIM_FORCES_RATIOS": "1.5", "KNEESIM_FORCES_SEEDS": str(SEEDS_ONSET),
+           "KNEESIM_FORCES_FIRST_SEED": "1300", "KNEESIM_FORCES_VALUE": mm}
+    rec = " ".join(f"{k}={val}" for k, val in env.items())
+    out = v.tool("tests/diagnosis_forces/test_diagnosis_forces_long", ["-tc=forces sweep", "--no-skip"],
+                 record=rec + ' build/tests/diagnosis_forces/test_diagnosis_forces_long -tc="forces sweep" --no-skip',
+                 env=env)
+    named, n = re.findall(r"^== \S+ \S+ ratio [0-9.]+: named (\d+) of (\d+)$", out, re.M)[0]
+    return f"{named}/{n}"
+
+
 def run(v):
     for fam, eff, named, n in sweep(v, EFFECTS, SEEDS_EFFECT, 1100) + sweep(v, ["none"], SEEDS_CLEAN, 1200):
         v.figure(f"{fam}_{eff}", f"{named}/{n}")
+    for mm in ONSET_MM:
+        v.figure(f"onset_{mm.replace('.', '_')}mm", onset(v, mm))
 
 
 TABLE = """
@@ -35,4 +53,8 @@ TABLE = """
 | white_walk (white + random-walk drift) | {white_walk_load_line} | {white_walk_vv_moment} | {white_walk_vv_alignment} | {white_walk_none} |
 | crosstalk (non-neighbouring cells, gain errors) | {crosstalk_load_line} | {crosstalk_vv_moment} | {crosstalk_vv_alignment} | {crosstalk_none} |
 | pink (1/f-like) | {pink_load_line} | {pink_vv_moment} | {pink_vv_alignment} | {pink_none} |
+
+| load-line shift (white_walk, noise scale 1.5, both signs) | 1 mm | 1.5 mm | 2 mm | 3 mm |
+|---|---|---|---|---|
+| named | {onset_1mm} | {onset_1_5mm} | {onset_2mm} | {onset_3mm} |
 """

@@ -72,8 +72,9 @@ Named: `{effect}`; the rig's gain against the trivial predictor is {baseline_gai
 
 Error model of `none` (`instrument`): correlation length {ell_s:.3f} s, white fraction
 {white_fraction:.2f}, n_eff {n_eff:.1f}; medial reading offset {none_offset_N:.1f} N, drift
-{none_drift_N_per_s:.1f} N/s, medial gain {none_medial_gain:+.3f}, lateral crosstalk
-{none_lateral_crosstalk:+.3f}; the rig's axial input filtered at {cutoff_axial_Hz:.2f} Hz.
+{none_drift_N_per_s:.1f} N/s, gain difference medial - lateral {none_gain_difference:+.3f},
+crosstalk lateral to medial {none_crosstalk_lateral_to_medial:+.3f}, medial to lateral
+{none_crosstalk_medial_to_lateral:+.3f}; the rig's axial input filtered at {cutoff_axial_Hz:.2f} Hz.
 
 | candidate | detection limit + | signal / noise | detection limit - | signal / noise |
 |---|---|---|---|---|

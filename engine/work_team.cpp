@@ -154,9 +154,11 @@ void WorkTeam::run_erased(int n, Fn fn, void* context) {
   if (sleeping_.load(std::memory_order_seq_cst) > 0) generation_.notify_all();
   const Clock::time_point t0 = Clock::now();
   // the caller's own task (0) first, then any other still unclaimed
+  int mine = 0;
   for (int k = 0; k < n; ++k) {
     if (!claim(k, g)) continue;
     if (k != 0) ++stats_.stolen_tasks;
+    ++mine;
     execute(k);
   }
   const Clock::time_point t1 = Clock::now();
@@ -170,21 +172,27 @@ void WorkTeam::run_erased(int n, Fn fn, void* context) {
   }
   const Clock::time_point t2 = Clock::now();
   if (!adaptive_) return;
-  // the policy: a wait longer than the caller's own work is a stall
+  // the policy: a wait longer than the caller's own work is a stall; a loop whose every task
+  // the caller ran itself is one the helpers did not help (they were not scheduled in time)
   const double own = microseconds(t1 - t0), wait = microseconds(t2 - t1);
   ++window_loops_;
   if (wait > own && wait > 5.0) {
     ++window_stalls_;
     ++stats_.stalls;
   }
-  if (window_stalls_ >= kStallsToGoSolo) {
+  if (mine == n) {
+    ++window_unhelped_;
+    ++stats_.unhelped_loops;
+  }
+  const bool window_done = window_loops_ >= kWindow;
+  if (window_stalls_ >= kStallsToGoSolo || (window_done && window_unhelped_ >= kUnhelpedToGoSolo)) {
     solo_left_ = backoff_;
     backoff_ = std::min(2 * backoff_, kMaxBackoff);
     ++stats_.solo_switches;
-    window_loops_ = window_stalls_ = 0;
-  } else if (window_loops_ >= kWindow) {
+    window_loops_ = window_stalls_ = window_unhelped_ = 0;
+  } else if (window_done) {
     if (window_stalls_ == 0) backoff_ = kFirstBackoff;
-    window_loops_ = window_stalls_ = 0;
+    window_loops_ = window_stalls_ = window_unhelped_ = 0;
   }
 }
 

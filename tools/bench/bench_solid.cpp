@@ -217,6 +217,7 @@ struct Bench {
       stats.solo_loops += s.solo_loops;
       stats.stalls += s.stalls;
       stats.stolen_tasks += s.stolen_tasks;
+      stats.unhelped_loops += s.unhelped_loops;
       stats.solo_switches += s.solo_switches;
     }
     return {wall, cpu};
@@ -255,11 +256,12 @@ std::vector<Result> measure_condition(const Bench& bench, const Options& o, bool
               load_average().c_str());
   const std::vector<Result> r = bench.measure();
   std::printf("| threads | M updates / wall s, median (min-max) | M updates / CPU s | team loops "
-              "solo / all | stalls | tasks taken over |\n|---|---|---|---|---|---|\n");
+              "solo / all | stalls | tasks taken over | loops the helpers did not help | solo switches |\n|---|---|---|---|---|---|---|---|\n");
   for (size_t k = 0; k < o.threads.size(); ++k) {
-    std::printf("| %d | %.2f (%.2f-%.2f) | %.2f | %ld / %ld | %ld | %ld |\n", o.threads[k],
-                r[k].wall_rate, r[k].wall_min, r[k].wall_max, r[k].cpu_rate, r[k].stats.solo_loops,
-                r[k].stats.loops, r[k].stats.stalls, r[k].stats.stolen_tasks);
+    std::printf("| %d | %.2f (%.2f-%.2f) | %.2f | %ld / %ld | %ld | %ld | %ld | %ld |\n",
+                o.threads[k], r[k].wall_rate, r[k].wall_min, r[k].wall_max, r[k].cpu_rate,
+                r[k].stats.solo_loops, r[k].stats.loops, r[k].stats.stalls,
+                r[k].stats.stolen_tasks, r[k].stats.unhelped_loops, r[k].stats.solo_switches);
   }
   std::printf("load average after %s\n", load_average().c_str());
   if (busy) stop_spinner(spinner);

@@ -163,5 +163,7 @@ TEST_CASE("a candidate must beat the case's trivial predictor by the held-out ma
   // without the gate (or with the measured mean as the trivial predictor) the slope is named
   opt.trivial_gate = false;
   CHECK(diagnose(c, opt).effect() == Effect::running_in);
-  CHECK(diagnose(line_case(0.2, 10.0, 0.3), DiagnosisOptions{0}).effect() == Effect::running_in);
+  DiagnosisOptions no_bootstrap;
+  no_bootstrap.bootstrap = 0;
+  CHECK(diagnose(line_case(0.2, 10.0, 0.3), no_bootstrap).effect() == Effect::running_in);
 }

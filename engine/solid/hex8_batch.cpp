@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <immintrin.h>
 
 // the 32- and 64-byte vectors never cross a non-inlined call (every helper below is inlined into
 // the three compiled kernels), so GCC's note that their argument passing differs between AVX and
@@ -72,25 +73,64 @@ struct ForceOut {
   double* slot_force;
 };
 
-// the lanes [o, o + L) of a batch; `count` of them are elements (count >= 1). Each lane's
-// arithmetic is the same whatever L and o, so every path gives the same bits
-template <bool kPlastic, bool kScatter, int L>
-inline __attribute__((always_inline)) void batch_kernel(
-    const Hex8Batch& ref, const SolidMaterial& mat, const Eigen::Vector3d* xs,
-    const Sym6* plastic_strain, const double* alpha, int count, const ForceOut& force_out,
-    Hex8BatchResult& out, int o) {
-  using Vec = VecN<L>;
-  // gather the node positions lane by lane
-  Vec x[kHexNodes][3];
+// the node positions of lanes [o, o + L), x[a][i] lane l = xs[ref.nodes[a][o + l]][i]: the
+// portable form, lane by lane (the compiler makes a masked broadcast or an insert per value)
+template <int L>
+inline __attribute__((always_inline)) void gather_positions(const Hex8Batch& ref,
+                                                            const Eigen::Vector3d* xs, int o,
+                                                            VecN<L> (&x)[kHexNodes][3]) {
   for (int a = 0; a < kHexNodes; ++a) {
     const double* p[L];
     for (int l = 0; l < L; ++l) p[l] = xs[ref.nodes[a][o + l]].data();
     for (int i = 0; i < 3; ++i) {
-      Vec v;
+      VecN<L> v;
       for (int l = 0; l < L; ++l) v[l] = p[l][i];
       x[a][i] = v;
     }
   }
+}
+
+// the same with the hardware gathers (one instruction per coordinate and node instead of L
+// loads and inserts with their index arithmetic; the same values, so the same bits). Only
+// inlined into the kernels compiled for those instruction sets (a target mismatch otherwise)
+__attribute__((target("avx512f"), always_inline)) inline void gather_positions_avx512(
+    const Hex8Batch& ref, const Eigen::Vector3d* xs, VecN<8> (&x)[kHexNodes][3]) {
+  const double* base = xs[0].data();  // Vector3d: 3 contiguous doubles, no padding
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double));
+  for (int a = 0; a < kHexNodes; ++a) {
+    const __m256i id = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(ref.nodes[a]));
+    const __m256i idx = _mm256_add_epi32(id, _mm256_add_epi32(id, id));  // 3 id: doubles
+    for (int i = 0; i < 3; ++i) {
+      // the masked form with a zero source: the plain one reads an undefined source register,
+      // which gcc 12 warns about
+      const __m512d v = _mm512_mask_i32gather_pd(_mm512_setzero_pd(), 0xff, idx, base + i, 8);
+      __builtin_memcpy(&x[a][i], &v, sizeof v);
+    }
+  }
+}
+__attribute__((target("avx2"), always_inline)) inline void gather_positions_avx2(
+    const Hex8Batch& ref, const Eigen::Vector3d* xs, int o, VecN<4> (&x)[kHexNodes][3]) {
+  const double* base = xs[0].data();
+  for (int a = 0; a < kHexNodes; ++a) {
+    const __m128i id = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ref.nodes[a] + o));
+    const __m128i idx = _mm_add_epi32(id, _mm_add_epi32(id, id));
+    for (int i = 0; i < 3; ++i) {
+      const __m256d v = _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base + i, idx,
+                                                 _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
+      __builtin_memcpy(&x[a][i], &v, sizeof v);
+    }
+  }
+}
+
+// the lanes [o, o + L) of a batch at node positions x (gathered by one of the above); `count`
+// of them are elements (count >= 1). Each lane's arithmetic is the same whatever L and o, so
+// every path gives the same bits
+template <bool kPlastic, bool kScatter, int L>
+inline __attribute__((always_inline)) void batch_kernel(
+    const Hex8Batch& ref, const SolidMaterial& mat, const VecN<L> (&x)[kHexNodes][3],
+    const Sym6* plastic_strain, const double* alpha, int count, const ForceOut& force_out,
+    Hex8BatchResult& out, int o) {
+  using Vec = VecN<L>;
   // F_ij = sum_a x_a,i B_a,j
   Vec B[kHexNodes][3];
   for (int a = 0; a < kHexNodes; ++a)
@@ -206,7 +246,11 @@ inline __attribute__((always_inline)) void batch_kernel(
     for (int j = 0; j < 3; ++j) P[i][j] = P[i][j] - 0.125 * G[i][j];
   Hex8BatchForce local;
   Hex8BatchForce& force = kScatter ? local : *force_out.buffer;
+  // unrolled so that the signs h_m,a are constants (a rolled loop computed them from
+  // kHexNatural and branched on them, every batch)
+#pragma GCC unroll 8
   for (int a = 0; a < kHexNodes; ++a) {
+#pragma GCC unroll 3
     for (int i = 0; i < 3; ++i) {
       Vec h = hourglass_sign(0, a) > 0 ? kq[0][i] : -kq[0][i];
       for (int m = 1; m < kHourglassModes; ++m) h = hourglass_sign(m, a) > 0 ? h + kq[m][i] : h - kq[m][i];
@@ -214,18 +258,21 @@ inline __attribute__((always_inline)) void batch_kernel(
     }
   }
   if constexpr (kScatter) {
-    // lane by lane (ascending element order), each element's eight nodes
+    // lane by lane (ascending element order), each element's eight nodes (the pointers in
+    // locals: read through force_out they were reloaded after every store, which may alias)
+    double* const node_force = force_out.node_force;
+    double* const slot_force = force_out.slot_force;
     for (int l = o; l < o + count; ++l) {
       for (int a = 0; a < kHexNodes; ++a) {
         const int s = ref.scatter[a][l];
         const double fx = force.f[a][0][l], fy = force.f[a][1][l], fz = force.f[a][2][l];
         if (s >= 0) {
-          double* f = force_out.node_force + 3 * static_cast<long>(s);
+          double* f = node_force + 3 * static_cast<long>(s);
           f[0] += fx;
           f[1] += fy;
           f[2] += fz;
         } else {
-          double* f = force_out.slot_force + 3 * static_cast<long>(~s);
+          double* f = slot_force + 3 * static_cast<long>(~s);
           f[0] = fx;
           f[1] = fy;
           f[2] = fz;
@@ -241,10 +288,15 @@ inline __attribute__((always_inline)) void batch_kernel(
 static_assert(kBatchLanes == 8, "the 4-lane paths take a batch in two halves");
 template <bool kPlastic, bool kScatter>
 inline __attribute__((always_inline)) void batch_halves(
-    const Hex8Batch& ref, const SolidMaterial& mat, const Eigen::Vector3d* x, const Sym6* ep,
+    const Hex8Batch& ref, const SolidMaterial& mat, const Eigen::Vector3d* xs, const Sym6* ep,
     const double* alpha, int count, const ForceOut& force, Hex8BatchResult& out) {
+  VecN<4> x[kHexNodes][3];
+  gather_positions<4>(ref, xs, 0, x);
   batch_kernel<kPlastic, kScatter, 4>(ref, mat, x, ep, alpha, std::min(count, 4), force, out, 0);
-  if (count > 4) batch_kernel<kPlastic, kScatter, 4>(ref, mat, x, ep, alpha, count - 4, force, out, 4);
+  if (count > 4) {
+    gather_positions<4>(ref, xs, 4, x);
+    batch_kernel<kPlastic, kScatter, 4>(ref, mat, x, ep, alpha, count - 4, force, out, 4);
+  }
 }
 
 using Kernel = void (*)(const Hex8Batch&, const SolidMaterial&, const Eigen::Vector3d*,
@@ -262,7 +314,13 @@ __attribute__((target("avx2"))) void kernel_avx2(const Hex8Batch& ref, const Sol
                                                  const Eigen::Vector3d* x, const Sym6* ep,
                                                  const double* alpha, int count,
                                                  const ForceOut& force, Hex8BatchResult& out) {
-  batch_halves<kPlastic, kScatter>(ref, mat, x, ep, alpha, count, force, out);
+  VecN<4> xv[kHexNodes][3];
+  gather_positions_avx2(ref, x, 0, xv);
+  batch_kernel<kPlastic, kScatter, 4>(ref, mat, xv, ep, alpha, std::min(count, 4), force, out, 0);
+  if (count > 4) {
+    gather_positions_avx2(ref, x, 4, xv);
+    batch_kernel<kPlastic, kScatter, 4>(ref, mat, xv, ep, alpha, count - 4, force, out, 4);
+  }
 }
 
 template <bool kPlastic, bool kScatter>
@@ -272,7 +330,9 @@ __attribute__((target("avx512f"))) void kernel_avx512(const Hex8Batch& ref,
                                                       const double* alpha, int count,
                                                       const ForceOut& force,
                                                       Hex8BatchResult& out) {
-  batch_kernel<kPlastic, kScatter, kBatchLanes>(ref, mat, x, ep, alpha, count, force, out, 0);
+  VecN<8> xv[kHexNodes][3];
+  gather_positions_avx512(ref, x, xv);
+  batch_kernel<kPlastic, kScatter, kBatchLanes>(ref, mat, xv, ep, alpha, count, force, out, 0);
 }
 
 // kernels[isa][plastic][scatter]

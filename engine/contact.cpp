@@ -240,8 +240,8 @@ struct ElementLoop {
                                   (tibia.v + tibia.w.cross(c_W - tibia.pivot));
     const double closing = -v_rel.dot(n_W);  // rate of penetration [m/s]
     const Eigen::Vector3d v_slip = v_rel + closing * n_W;
-    const double p_elastic = ef_pressure(law.law, law.foundation_modulus, d, h);
-    const double k_area = ef_stiffness(law.law, law.foundation_modulus, d, h);
+    const double p_elastic = ef_pressure(law.law, law.foundation_modulus, law.exponent, d, h);
+    const double k_area = ef_stiffness(law.law, law.foundation_modulus, law.exponent, d, h);
     const double p_damping = law.damping_beta * k_area * closing;
     // the damper may at most double or cancel the elastic pressure: an impact (a fast closing
     // speed) must not produce a force spike that the stable step does not cover
@@ -275,7 +275,8 @@ struct ElementLoop {
     t.force_W = element_force_W[e];
     t.pressure = pressure[e];
     t.penetration = penetration[e];
-    t.ke = area[e] * ef_stiffness(law.law, law.foundation_modulus, penetration[e], thickness[e]);
+    t.ke = area[e] * ef_stiffness(law.law, law.foundation_modulus, law.exponent, penetration[e],
+                                  thickness[e]);
     t.ce = friction_viscosity[e];
     set_friction_terms(e, t);
     return t;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "engine/contact.h"
+#include "engine/contact_law.h"
 #include "engine/kinematics.h"
 #include "engine/solid/solid_step.h"
 
@@ -24,6 +25,15 @@ void apply_wrench(const State& state, Data& data, int c, const Eigen::Vector3d& 
 // dp/dd of the rigid insert's elastic-foundation law at pressure p over a layer h [Pa/m]:
 // the stiffness the rigid path's contact damper would see there
 double ef_stiffness_at_pressure(const ContactModel& c, double p, double h) {
+  if (c.exponent != 1.0) {
+    // p = K g^n (or the linear run-in below kExponentLinearStrain): g from p, then dp/dg dg/dd
+    const double K = c.foundation_modulus, n = c.exponent;
+    const double p_run_in = K * std::pow(kExponentLinearStrain, n);
+    const double g = (n < 1.0 && p < p_run_in) ? p / (K * std::pow(kExponentLinearStrain, n - 1.0))
+                                               : std::pow(std::max(p, 0.0) / K, 1.0 / n);
+    const double g_rate = c.law == ContactLaw::kLinear ? 1.0 / h : std::exp(std::min(g, 4.6)) / h;
+    return ef_pressure_slope(K, n, g) * g_rate;
+  }
   switch (c.law) {
     case ContactLaw::kLinear:
       return c.foundation_modulus / h;

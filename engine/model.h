@@ -87,6 +87,7 @@ struct InsertSurface {
 struct ContactModel {
   ContactLaw law = ContactLaw::kNonlinear;
   double foundation_modulus = 0.0;  // K = (1-nu)E/((1+nu)(1-2nu)) [Pa]
+  double exponent = 1.0;            // n of p = K g^n (engine/contact_law.h) [-]
   double friction = 0.07;           // Coulomb coefficient [-]
   double slip_regularization = 1e-3;  // eps of the regularized Coulomb law [m/s]
   double damping_beta = 0.0;        // stiffness-proportional contact damping [s]

@@ -53,6 +53,7 @@ std::array<std::array<double, kNumDof>, 2> calc_contact_stiffness(const Model& m
     const double d = data.penetration[e];
     if (d <= 0.0) continue;
     const double ke = s.area[e] * ef_stiffness(model.contact.law, model.contact.foundation_modulus,
+                                               model.contact.exponent,
                                                d, s.thickness[e]);
     const Eigen::Vector3d c_W = data.X_WT * s.centroid_T[e];
     const Eigen::Vector3d n_W = data.X_WT.linear() * s.normal_T[e];

@@ -507,6 +507,7 @@ BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
   const double friction = c.friction_override >= 0.0 ? c.friction_override : mat.friction;
   m.contact.law = c.contact_law == "linear" ? engine::ContactLaw::kLinear
                                             : engine::ContactLaw::kNonlinear;
+  m.contact.exponent = c.contact_law_exponent;
   m.contact.foundation_modulus =
       c.contact_foundation_modulus_MPa > 0.0
           ? c.contact_foundation_modulus_MPa * 1e6  // calibrated (contact.law_file)

@@ -112,6 +112,7 @@ struct Config {
 
   // [contact]
   std::string contact_law = "nonlinear";   // "linear" | "nonlinear"
+  double contact_law_exponent = 1.0;       // n of p = K g^n (engine/contact_law.h)
   double contact_damping_ratio = 0.3;      // of the stiffest contact mode [-]
   double sdf_spacing_mm = 0.4;             // femoral distance-field node spacing [mm]
   double sdf_band_mm = 1.5;                // exact band of the field [mm]

@@ -115,7 +115,9 @@ Registry make_registry(Config& c) {
     "creep: time constant tau of the creep penetration (loaded test time)");
 
   r.choice("contact.law", c.contact_law, {"linear", "nonlinear"},
-    "rigid insert's elastic-foundation law: p = -K ln(1 - d/h) (nonlinear) or p = K d/h (linear)");
+    "rigid insert's elastic-foundation law: p = K g^n with g = -ln(1 - d/h) (nonlinear) or g = d/h (linear)");
+  r.number("contact.law_exponent", c.contact_law_exponent, 0.2, 2.0,
+    "exponent n of the rigid insert's law p = K g^n (1: the classical laws; a calibrated law sets its fitted n)");
   r.number("contact.damping_ratio", c.contact_damping_ratio, 0.0, 1.0,
     "contact damping as a fraction of critical for the stiffest contact mode");
   r.number("contact.sdf_spacing_mm", c.sdf_spacing_mm, 0.05, 2.0,

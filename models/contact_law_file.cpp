@@ -72,15 +72,15 @@ CalibratedContactLaw read_contact_law_file(const std::filesystem::path& file) {
     }
     static const char* const kKeys[] = {"material", "implant", "key", "implant_hash",
                                         "material_hash", "settings_hash", "law",
-                                        "foundation_modulus_MPa", "specified_modulus_MPa",
-                                        "fitted_on"};
+                                        "foundation_modulus_MPa", "exponent",
+                                        "specified_modulus_MPa", "fitted_on"};
     bool known = false;
     for (const char* k : kKeys) known = known || key == std::string(kSection) + k;
     if (!known) {
       throw InputError(where(file, entry) + ": unknown key '" + key +
                        "' in a calibrated contact law file (allowed: material, implant, key, "
                        "implant_hash, material_hash, settings_hash, law, foundation_modulus_MPa, "
-                       "specified_modulus_MPa, fitted_on and the provenance table).");
+                       "exponent, specified_modulus_MPa, fitted_on and the provenance table).");
     }
   }
   law.material = text(doc, file, "material");
@@ -91,6 +91,10 @@ CalibratedContactLaw read_contact_law_file(const std::filesystem::path& file) {
   law.key.settings = text(doc, file, "settings_hash");
   law.law = text(doc, file, "law");
   law.foundation_modulus_MPa = number(doc, file, "foundation_modulus_MPa", 0.0, 1e6);
+  // a law without an exponent is one of physics.md's laws (n = 1)
+  if (doc.count(std::string(kSection) + "exponent")) {
+    law.exponent = number(doc, file, "exponent", 0.2, 2.0);
+  }
   law.specified_modulus_MPa = number(doc, file, "specified_modulus_MPa", 0.0, 1e6);
   if (doc.count(std::string(kSection) + "fitted_on")) law.fitted_on = text(doc, file, "fitted_on");
   if (law.law != "linear" && law.law != "nonlinear") {
@@ -142,6 +146,7 @@ void write_contact_law_file(const std::filesystem::path& file, const CalibratedC
     << "settings_hash = " << toml_quoted(law.key.settings) << "\n"
     << "law = " << toml_quoted(law.law) << "\n"
     << "foundation_modulus_MPa = " << law.foundation_modulus_MPa << "\n"
+    << "exponent = " << law.exponent << "\n"
     << "specified_modulus_MPa = " << law.specified_modulus_MPa << "\n"
     << "fitted_on = " << toml_quoted(law.fitted_on) << "\n";
   if (!law.provenance.empty()) {

@@ -2,7 +2,8 @@
 // (and by the calibration on first use), shipped for the built-in and example implants in
 // models/contact_laws/, cached per key (models/contact_law_library.h), or named by a config as
 // contact.law_file. The file holds the law the rigid path uses (the nonlinear or linear
-// foundation law of physics.md section 4) with an effective foundation modulus fitted against
+// foundation law of physics.md section 4 raised to an exponent, engine/contact_law.h) with an
+// effective foundation modulus and the exponent fitted against
 // the deformable insert, what it belongs to (models/contact_law_key.h: the implant, material
 // and settings hashes and the key), and how it was made:
 //
@@ -15,15 +16,17 @@
 //   settings_hash = "..."
 //   law = "nonlinear"                # contact.law
 //   foundation_modulus_MPa = 1433.0  # K_eff, replaces K = (1-nu)E/((1+nu)(1-2nu))
+//   exponent = 0.7                   # n of p = K_eff g^n (absent: 1)
 //   specified_modulus_MPa = 4116.2   # K of the material, for the record
 //   fitted_on = "..."                # what it was fitted on, for the record
 //   [calibrated_contact.provenance]  # command, deformable mesh, errors, run times (any keys)
 //
-// Why an effective modulus and not a tabulated law: the rigid path's pressure at an element is
-// a function of its own penetration only; what the deformable insert adds is load spreading
-// (a neighbour's penetration), which no pointwise law can carry. A single stiffness factor is
-// the one degree of freedom a pointwise law has to trade peak pressure against contact area;
-// docs/deformable.md gives the errors it leaves per implant and material.
+// Why a fitted modulus and exponent and not a tabulated law: the rigid path's pressure at an
+// element is a function of its own penetration only; what the deformable insert adds is load
+// spreading (a neighbour's penetration), which no pointwise law can carry. A pointwise law has
+// two things to trade: how deep the femur sinks for the load (the modulus: contact area
+// against pressure) and the shape of the patch's pressure (the exponent: its peak over its
+// mean). docs/validation.md gives the errors it leaves per implant and material.
 #pragma once
 
 #include <filesystem>
@@ -41,6 +44,7 @@ struct CalibratedContactLaw {
   ContactLawKey key;                 // what the law belongs to
   std::string law = "nonlinear";     // "linear" | "nonlinear"
   double foundation_modulus_MPa = 0.0;   // K_eff [MPa]
+  double exponent = 1.0;                 // n of p = K_eff g^n (engine/contact_law.h) [-]
   double specified_modulus_MPa = 0.0;    // K of the material [MPa]
   std::string fitted_on;             // description
   // how it was made: key -> value in TOML syntax (a quoted string or a number), in file order

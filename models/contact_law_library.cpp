@@ -40,6 +40,7 @@ void apply(Config& c, const CalibratedContactLaw& law, const std::filesystem::pa
            const std::string& source) {
   c.contact_law = law.law;
   c.contact_foundation_modulus_MPa = law.foundation_modulus_MPa;
+  c.contact_law_exponent = law.exponent;
   c.contact_law_resolution.source = source;
   c.contact_law_resolution.file = file.string();
   c.contact_law_resolution.needs_calibration = false;
@@ -185,6 +186,7 @@ void transfer_contact_law(const Config& nominal, Config& trial) {
   r.file = nominal.contact_law_resolution.file;
   r.provenance = nominal.contact_law_resolution.provenance;
   trial.contact_law = nominal.contact_law;
+  trial.contact_law_exponent = nominal.contact_law_exponent;
   if (nominal.contact_foundation_modulus_MPa > 0.0) {
     trial.contact_foundation_modulus_MPa = nominal.contact_foundation_modulus_MPa * k_trial / k_nominal;
     char buf[200];

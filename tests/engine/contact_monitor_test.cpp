@@ -44,7 +44,7 @@ TEST_CASE("contact stiffness monitor and friction terms equal their per-element 
       const Eigen::Vector3d c_W = d.X_WT * model.insert.centroid_T[e];
       const Eigen::Vector3d n_W = d.X_WT.linear() * model.insert.normal_T[e];
       const double ke = model.insert.area[e] *
-                        engine::ef_stiffness(model.contact.law, model.contact.foundation_modulus,
+                        engine::ef_stiffness(model.contact.law, model.contact.foundation_modulus, model.contact.exponent,
                                              d.penetration[e], model.insert.thickness[e]);
       const double ce = d.friction_viscosity[e];
       const Eigen::Vector3d slip_W = d.X_WT.linear() * d.slip_velocity_T[e];

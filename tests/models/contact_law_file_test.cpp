@@ -85,6 +85,7 @@ TEST_CASE("contact law file: round trip, and refusals naming file, key and value
   law.implant = "generic";
   law.key = make_contact_law_key(config);
   law.foundation_modulus_MPa = 812.5;
+  law.exponent = 0.625;
   law.specified_modulus_MPa = 4170.0;
   law.fitted_on = "test";
   law.provenance = {{"command", "\"kneesim calibrate-contact\""}, {"held_out_peak_rms_calibrated", "0.05"}};
@@ -92,6 +93,7 @@ TEST_CASE("contact law file: round trip, and refusals naming file, key and value
   write_contact_law_file(good, law);
   const CalibratedContactLaw back = read_contact_law_file(good);
   CHECK(back.foundation_modulus_MPa == 812.5);
+  CHECK(back.exponent == 0.625);
   CHECK(back.law == "nonlinear");
   CHECK(back.key.key == law.key.key);
   REQUIRE(back.provenance.size() == 2);
@@ -130,6 +132,15 @@ TEST_CASE("contact law file: round trip, and refusals naming file, key and value
                                     "is outside the allowed range";
   CHECK_THROWS_WITH_AS(read_contact_law_file(negative), doctest::Contains(negative_text.c_str()),
                        InputError);
+  // an exponent outside 0.2-2 (the law would not be a foundation's): refused, naming the value
+  const auto steep = temp_file(
+      "steep.toml",
+      "[calibrated_contact]\nmaterial = \"uhmwpe\"\nimplant = \"generic\"\nkey = \"a\"\n"
+      "implant_hash = \"b\"\nmaterial_hash = \"c\"\nsettings_hash = \"d\"\nlaw = \"nonlinear\"\n"
+      "foundation_modulus_MPa = 300\nexponent = 5\nspecified_modulus_MPa = 4170\n");
+  CHECK_THROWS_WITH_AS(read_contact_law_file(steep),
+                       doctest::Contains("key 'calibrated_contact.exponent' = 5 is outside the allowed range"),
+                       InputError);
   const auto unknown = temp_file("unknown.toml", "[calibrated_contact]\nmodulus = 3\n");
   CHECK_THROWS_WITH_AS(read_contact_law_file(unknown),
                        doctest::Contains("unknown key 'calibrated_contact.modulus'"), InputError);
@@ -166,6 +177,7 @@ TEST_CASE("contact law resolution: the shipped law of the built-in implant by de
     CHECK(r.warning.empty());
     const CalibratedContactLaw law = read_contact_law_file(r.file);
     CHECK(c.contact_foundation_modulus_MPa == law.foundation_modulus_MPa);
+    CHECK(c.contact_law_exponent == law.exponent);
     CHECK(law.foundation_modulus_MPa != doctest::Approx(law.specified_modulus_MPa).epsilon(0.01));
     bool has_command = false;
     for (const auto& [k, v] : r.provenance) has_command |= k == "command";
@@ -174,6 +186,7 @@ TEST_CASE("contact law resolution: the shipped law of the built-in implant by de
     const BuiltModel b = build_model(load_config({}, {{"material.name", std::string("\"") + material + "\""},
                                                        {"implant.edge_length_mm", "3"}}));
     CHECK(b.model.contact.foundation_modulus == doctest::Approx(law.foundation_modulus_MPa * 1e6));
+    CHECK(b.model.contact.exponent == law.exponent);
   }
   // --no-calibrate: the law as specified, with the warning
   const Config off = load_config({}, {{"contact.calibration", "\"off\""}});

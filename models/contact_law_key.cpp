@@ -125,7 +125,11 @@ ContactLawKey make_contact_law_key(const Config& c) {
 
 Config make_calibration_config(const Config& c, bool own_reference) {
   // the defaults, without resolving a law (the calibration starts from the law as specified)
-  Config r = load_config("", {{"contact.calibration", "\"off\""}});
+  std::vector<Override> defaults = {{"contact.calibration", "\"off\""}};
+  if (!own_reference) {
+    for (const ConfigSetting& s : kContactCalibrationReferenceMesh) defaults.push_back({s.key, s.value});
+  }
+  Config r = load_config("", defaults);
   r.contact_calibration = "auto";
   r.contact_law_resolution = {};
   r.file = c.file;  // relative mesh paths resolve against the config's folder
@@ -153,10 +157,7 @@ Config make_calibration_config(const Config& c, bool own_reference) {
   r.user_materials = c.user_materials;
   r.contact_law = c.contact_law;
   r.threads = c.threads;  // results are bit-identical for any thread count
-  if (!own_reference) {
-    r.deformable_element_size_mm = kContactCalibrationElementMm;
-    return r;
-  }
+  if (!own_reference) return r;
   r.deformable_element_size_mm = c.deformable_element_size_mm;
   r.deformable_layers = c.deformable_layers;
   r.deformable_elements_across_contact = c.deformable_elements_across_contact;

@@ -28,7 +28,7 @@ struct Config;
 
 // version of the calibration procedure: a change of the fit, its windows or the reference
 // load case changes every key, so no stale law is found
-inline constexpr int kContactCalibrationVersion = 1;
+inline constexpr int kContactCalibrationVersion = 2;  // 2: the exponent fitted with K, the refined mesh
 
 struct ContactLawKey {
   std::string implant;   // hex hash of the implant geometry
@@ -41,16 +41,27 @@ struct ContactLawKey {
 // cannot be read
 ContactLawKey make_contact_law_key(const Config& config);
 
-// the element size of the deformable insert the laws are calibrated against by default (the
-// reference mesh: the default [deformable] keys with this element size); kneesim
-// calibrate-contact --element-mm sets another
-inline constexpr double kContactCalibrationElementMm = 2.0;
+// the deformable insert the laws are calibrated against by default (the reference mesh): the
+// default [deformable] keys with these, the footprint-refined mesh on which UHMWPE's and PEEK's
+// peak and stance-mean pressure on the built-in implant change by less than 5 % from the previous
+// refinement (docs/validation.md, "Deformable insert mesh convergence"). kneesim
+// calibrate-contact --element-mm and --set deformable.* set another.
+struct ConfigSetting {
+  const char* key;
+  const char* value;  // as on the command line (TOML value)
+};
+inline constexpr ConfigSetting kContactCalibrationReferenceMesh[] = {
+    {"deformable.element_size_mm", "0.5"},
+    {"deformable.layers", "6"},
+    {"deformable.grading", "0.15"},
+    {"deformable.refine", "\"contact\""},
+};
 
 // the reference load case the law of `config` is calibrated under: the built-in defaults with
 // the config's implant, material and contact.law (rigid insert, the law as specified); every
 // other key at its default, so the key above describes it completely. The deformable reference:
 // with `own_reference` (kneesim calibrate-contact) the config's [deformable] keys, else the
-// default [deformable] keys with kContactCalibrationElementMm (what a rigid config's law is
+// default [deformable] keys with kContactCalibrationReferenceMesh (what a rigid config's law is
 // looked up and calibrated on first use under: a rigid run does not use [deformable])
 Config make_calibration_config(const Config& config, bool own_reference = false);
 

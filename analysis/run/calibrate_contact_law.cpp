@@ -24,6 +24,7 @@ namespace {
 
 constexpr double kFitLo = 0.0, kFitHi = 30.0, kHeldLo = 30.0, kHeldHi = 60.0;
 constexpr double kSearchLo = 0.01, kSearchHi = 10.0;  // K_eff / K
+constexpr double kExponentLo = 0.3, kExponentHi = 1.5;  // n of p = K_eff g^n
 
 nlohmann::json errors_json(const TraceErrors& e) {
   return {{"peak_pressure_rms", e.peak}, {"mean_pressure_rms", e.mean},
@@ -89,6 +90,16 @@ void check_deformable_run(const std::filesystem::path& dir, const models::Config
 
 }  // namespace
 
+void check_exponent_inside_search(double n_fit, const std::string& material,
+                                  const std::string& implant, const std::filesystem::path& out) {
+  if (n_fit < 1.02 * kExponentLo || n_fit > kExponentHi / 1.02) {
+    throw InputError("the contact-law fit for material \"" + material + "\" on implant \"" +
+                     implant + "\" ended at the search bound of the exponent n = " +
+                     number(n_fit) + " (search " + number(kExponentLo) + " to " +
+                     number(kExponentHi) + "): no law written; the runs are in " + out.string());
+  }
+}
+
 void check_fit_inside_search(double k_fit, double k_spec, const std::string& material,
                              const std::string& implant, const std::filesystem::path& out) {
   const double lo = kSearchLo * k_spec, hi = kSearchHi * k_spec;
@@ -147,10 +158,11 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   const PressureTrace deformable = read_pressure_trace(deformable_csv);
 
   // a rigid run at a foundation modulus (0: the material's), its trace and seconds per cycle
-  auto rigid_run = [&](double modulus_MPa, const fs::path& dir, double* seconds) {
+  auto rigid_run = [&](double modulus_MPa, double exponent, const fs::path& dir, double* seconds) {
     GaitRunJob run;
     run.config = base;
     run.config.contact_foundation_modulus_MPa = modulus_MPa;
+    run.config.contact_law_exponent = exponent;
     run.config.contact_law_resolution = {};
     run.config.contact_law_resolution.source = modulus_MPa > 0.0 ? "modulus" : "specified";
     run.out = dir;
@@ -161,25 +173,63 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
     return read_pressure_trace(dir / "kinematics.csv");
   };
   double rigid_seconds = 0.0;
-  const PressureTrace specified = rigid_run(0.0, out / "rigid", &rigid_seconds);
+  const PressureTrace specified =
+      rigid_run(0.0, base.contact_law_exponent, out / "rigid", &rigid_seconds);
 
+  // two parameters: for each exponent n (outer golden section) the modulus that fits best
+  // (inner); the modulus sets how deep the femur sinks for the load, the exponent the shape of
+  // the patch's pressure (its peak over its mean), so the pair can match peak and mean pressure
+  // where one modulus trades them against each other
   int evaluations = 0;
   const double lo = kSearchLo * k_spec_MPa, hi = kSearchHi * k_spec_MPa;
-  const double k_fit = minimize_log_golden(
-      [&](double k) {
-        const auto t = rigid_run(k, out / "fit", nullptr);
-        const auto e = compare_traces(t, deformable, kFitLo, kFitHi);
-        if (!job.quiet) {
-          std::fprintf(stderr, "calibrate-contact: K %.1f MPa: peak %.3f, mean %.3f (RMS, 0-30 %%)\n",
-                       k, e.peak, e.mean);
-        }
-        return e.peak * e.peak + e.mean * e.mean;
-      },
-      lo, hi, 0.01, evaluations);
+  struct Fit {
+    double k = 0.0, objective = 1e300;
+  };
+  auto fit_modulus = [&](double n) {
+    int inner = 0;
+    Fit best;
+    minimize_log_golden(
+        [&](double k) {
+          const auto t = rigid_run(k, n, out / "fit", nullptr);
+          const auto e = compare_traces(t, deformable, kFitLo, kFitHi);
+          if (!job.quiet) {
+            std::fprintf(stderr, "calibrate-contact: n %.3f, K %.1f MPa: peak %.3f, mean %.3f "
+                         "(RMS, 0-30 %%)\n", n, k, e.peak, e.mean);
+          }
+          const double objective = e.peak * e.peak + e.mean * e.mean;
+          if (objective < best.objective) best = {k, objective};
+          return objective;
+        },
+        lo, hi, 0.01, inner);
+    evaluations += inner;
+    return best;
+  };
+  int outer = 0;
+  Fit best;
+  double n_fit = job.exponent;
+  if (job.exponent > 0.0) {
+    best = fit_modulus(job.exponent);
+  } else {
+    minimize_log_golden(
+        [&](double n) {
+          const Fit f = fit_modulus(n);
+          if (f.objective < best.objective) {
+            best = f;
+            n_fit = n;
+          }
+          return f.objective;
+        },
+        kExponentLo, kExponentHi, 0.02, outer);
+  }
+  const double k_fit = best.k;
   fs::remove_all(out / "fit");
   check_fit_inside_search(k_fit, k_spec_MPa, base.material.name, models::implant_identity(base), out);
+  if (job.exponent <= 0.0) {
+    check_exponent_inside_search(n_fit, base.material.name, models::implant_identity(base), out);
+  }
   double calibrated_seconds = 0.0;
-  const PressureTrace calibrated = rigid_run(k_fit, out / "rigid_calibrated", &calibrated_seconds);
+  const PressureTrace calibrated =
+      rigid_run(k_fit, n_fit, out / "rigid_calibrated", &calibrated_seconds);
 
   const TraceErrors held_spec = compare_traces(specified, deformable, kHeldLo, kHeldHi);
   const TraceErrors held_cal = compare_traces(calibrated, deformable, kHeldLo, kHeldHi);
@@ -193,8 +243,10 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   law.key = key;
   law.law = base.contact_law;
   law.foundation_modulus_MPa = k_fit;
+  law.exponent = n_fit;
   law.specified_modulus_MPa = k_spec_MPa;
-  law.fitted_on = "stance 0-30 % peak and mean pressure of the deformable insert (" +
+  law.fitted_on = std::string(job.exponent > 0.0 ? "modulus (exponent fixed)" : "modulus and exponent") +
+                  " on stance 0-30 % peak and mean pressure of the deformable insert (" +
                   describe_mesh(base) + "), rig " + base.rig_preset;
   char date[32];
   const std::time_t now = std::time(nullptr);
@@ -209,6 +261,8 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
        {"deformable_elements", std::to_string(deformable_elements)},
        {"modulus_ratio", number(k_fit / k_spec_MPa)},
        {"search_range_MPa", models::toml_quoted(number(lo) + " to " + number(hi))},
+       {"exponent_search", models::toml_quoted(job.exponent > 0.0 ? "fixed (--exponent)"
+                                               : number(kExponentLo) + " to " + number(kExponentHi))},
        {"fit_evaluations", std::to_string(evaluations)},
        {"fit_window_pct", models::toml_quoted("0-30")},
        {"held_out_window_pct", models::toml_quoted("30-60")},
@@ -254,6 +308,9 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   s["specified_modulus_MPa"] = k_spec_MPa;
   s["calibrated_modulus_MPa"] = k_fit;
   s["modulus_ratio"] = k_fit / k_spec_MPa;
+  s["calibrated_exponent"] = n_fit;
+  s["specified_exponent"] = base.contact_law_exponent;
+  s["exponent_search"] = {kExponentLo, kExponentHi};
   s["search_range_MPa"] = {lo, hi};
   s["fit_at_search_bound"] = false;
   s["fit_evaluations"] = evaluations;

@@ -6,11 +6,13 @@
 // Procedure, under the reference load case of models::make_calibration_config (the config's
 // implant, material, contact.law and deformable reference mesh; everything else at its default, i.e.
 // the stanmore rig and the shipped gait): one deformable cycle (or a finished deformable run),
-// the rigid insert with the law as specified, and a golden-section search of the effective
-// foundation modulus K_eff over log K in [0.01, 10] K minimizing peak^2 + mean^2 of the
-// normalized RMS frame errors over 0-30 % of the cycle (analysis/run/contact_calibration.h);
+// the rigid insert with the law as specified, and a nested golden-section search of the law
+// p = K_eff g^n (engine/contact_law.h): the exponent n over log n in [0.3, 1.5] outside, the
+// effective foundation modulus K_eff over log K in [0.01, 10] K inside, minimizing
+// peak^2 + mean^2 of the normalized RMS frame errors over 0-30 % of the cycle
+// (analysis/run/contact_calibration.h);
 // the errors over 30-60 %, which the fit never saw, are the held-out judgement. A fit that ends
-// at a search bound is no calibration: InputError, and no law is written.
+// at a search bound (of either parameter) is no calibration: InputError, and no law is written.
 #pragma once
 
 #include <filesystem>
@@ -29,6 +31,7 @@ struct ContactCalibrationJob {
   std::string command;                     // the command line, for the provenance
   bool plots = true;                       // out/calibration.png
   bool quiet = false;                      // no progress lines on stderr
+  double exponent = 0.0;                   // > 0: n fixed at this value, K_eff alone fitted
 };
 
 struct ContactCalibrationReport {
@@ -48,6 +51,10 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
 // and the folder `out` the runs are kept in
 void check_fit_inside_search(double k_fit, double k_spec, const std::string& material,
                              const std::string& implant, const std::filesystem::path& out);
+
+// the same for the fitted exponent n (search 0.3 to 1.5; within 2 % of a bound)
+void check_exponent_inside_search(double n_fit, const std::string& material,
+                                  const std::string& implant, const std::filesystem::path& out);
 
 // a rigid config without a law (config.contact_law_resolution.needs_calibration) gets one:
 // calibrated now in a scratch folder, stored in the cache (when on), remembered by this process

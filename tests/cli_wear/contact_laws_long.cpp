@@ -1,13 +1,16 @@
 // The shipped calibrated contact laws (models/contact_laws/, made by
 // tools/scripts/calibrate_contact_laws.sh) recalibrated from scratch (test_cli_wear_long, label
-// "long"; one 2 mm deformable cycle and about 16 rigid ones per material, 1-3 minutes each on
-// the shared 2-core machine): `kneesim calibrate-contact --material M` gives the same key and
-// the shipped K_eff within 2 % (the golden-section search stops at a 1 % bracket; a solver
-// change of round-off moves the deformable reference by far less), and the calibrated law's
-// stance (0-60 %) peak and mean pressure lie within 15 % of the deformable insert's (issue 24's
-// acceptance) with the fit not at a search bound.
+// "long"; one deformable cycle on the reference mesh, about 48 000 elements, and about 200 short
+// rigid runs per material, 3-6 minutes each on the shared 2-core machine):
+// `kneesim calibrate-contact --material M` gives the same key and the shipped law: the exponent
+// within 0.03 (the outer golden section stops at a 2 % bracket) and the law's pressure at the
+// strain g = 0.01 (the stance strains are 0.005-0.02) within 3 % (K_eff alone moves with n:
+// 0.01^0.02 = 0.91 for a 0.02 change of n, so K is compared through the pressure it gives), and
+// the calibrated law's stance (0-60 %) peak and mean pressure lie within 15 % of the deformable
+// insert's (issue 24's acceptance) with the fit not at a search bound.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "models/contact_law_file.h"
@@ -32,7 +35,11 @@ TEST_CASE("shipped contact laws: recalibrated, the same law, within 15 % of the 
     REQUIRE(r.exit_code == 0);
     const models::CalibratedContactLaw again = models::read_contact_law_file(out / "contact_law.toml");
     CHECK(again.key.key == law.key.key);
-    CHECK(again.foundation_modulus_MPa == doctest::Approx(law.foundation_modulus_MPa).epsilon(0.02));
+    CHECK(again.exponent == doctest::Approx(law.exponent).epsilon(0.03));
+    auto pressure = [](const models::CalibratedContactLaw& l) {
+      return l.foundation_modulus_MPa * std::pow(0.01, l.exponent);
+    };
+    CHECK(pressure(again) == doctest::Approx(pressure(law)).epsilon(0.03));
     const auto s = nlohmann::json::parse(slurp(out / "summary.json"));
     CHECK(s["fit_at_search_bound"] == false);
     const auto& f = s["stance_figures"];

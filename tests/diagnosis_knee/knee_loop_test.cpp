@@ -17,10 +17,12 @@ using diagnosis::Effect;
 TEST_CASE("the geometry-following forward model follows the wear loop under a pressure law") {
   // the loop (alpha = 1.49 for this seed, the steep end of the tests' range) on high_load and
   // low_load against the path table's prediction with the same law and k, and the
-  // pristine-linear form. Measured (docs/diagnosis.md): path -25 % / +5 % at 3 Mc (high / low
-  // load), pristine-linear -53 % / -25 %; the path's geometry is Archard's at each worn volume,
-  // which a steep pressure law (wearing the low-pressure border faster) departs from. Required:
-  // the path closer to the loop than the pristine-linear form, and within 30 %.
+  // pristine-linear form. Measured (docs/diagnosis.md): at 3 Mc the path -7 % / +4 % (high /
+  // low load), pristine-linear -33 % / -22 %; at 1 Mc both within 8 % (the geometry has hardly
+  // moved, and which is closer there is not a property of the model). The path's geometry is
+  // Archard's at each worn volume, which a steep pressure law (wearing the low-pressure border
+  // faster) departs from. Required: within 30 % everywhere, within 10 % at 1 Mc, and closer to
+  // the loop than the pristine-linear form at 3 Mc.
   const test::LoopTruth t = test::make_loop_truth(Effect::pressure_dependent_wear, 424242);
   const auto& path = test::knee_test_path_tables();
   const auto& pristine = test::knee_test_tables();
@@ -40,7 +42,11 @@ TEST_CASE("the geometry-following forward model follows the wear loop under a pr
       INFO(c << " at " << n << " cycles: loop " << loop << " mm3, path " << followed
              << ", pristine-linear " << linear << " (alpha " << p.pressure_exponent << ")");
       CHECK(std::abs(followed / loop - 1.0) < 0.30);
-      CHECK(std::abs(followed / loop - 1.0) < std::abs(linear / loop - 1.0));
+      if (n < 2e6) {
+        CHECK(std::abs(followed / loop - 1.0) < 0.10);
+      } else {
+        CHECK(std::abs(followed / loop - 1.0) < std::abs(linear / loop - 1.0));
+      }
     }
   }
 }

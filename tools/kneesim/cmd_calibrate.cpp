@@ -23,6 +23,7 @@ struct CalibrateArgs {
   std::vector<std::string> sets;
   std::string out = "kneesim-calibrate-contact";
   double element_mm = 0.0;
+  double exponent = 0.0;
   std::string deformable_from;
   bool quiet = false;
   bool no_plots = false;
@@ -32,8 +33,10 @@ struct CalibrateArgs {
 void calibrate(const CalibrateArgs& a) {
   // the reference mesh: the default [deformable] keys with the laws' reference element size
   // (what a rigid config's law is looked up under), unless --element-mm or --set say otherwise
-  std::vector<std::string> sets = {"deformable.element_size_mm=" +
-                                   std::to_string(models::kContactCalibrationElementMm)};
+  std::vector<std::string> sets;
+  for (const models::ConfigSetting& s : models::kContactCalibrationReferenceMesh) {
+    sets.push_back(std::string(s.key) + "=" + s.value);
+  }
   sets.insert(sets.end(), a.sets.begin(), a.sets.end());
   if (!a.material.empty()) sets.push_back("material.name=\"" + a.material + "\"");
   if (a.element_mm > 0.0) sets.push_back("deformable.element_size_mm=" + std::to_string(a.element_mm));
@@ -47,13 +50,14 @@ void calibrate(const CalibrateArgs& a) {
   job.command = a.command;
   job.plots = !a.no_plots;
   job.quiet = a.quiet;
+  job.exponent = a.exponent;
   const run::ContactCalibrationReport r = run::calibrate_contact_law(job);
   report::write_calibrate_report(a.out, r.law.material);
   const auto& held = r.summary["held_out_30_60pct"];
-  std::printf("calibrate-contact %s: K %.1f -> %.1f MPa (x%.3f); held-out stance 30-60 %%: "
+  std::printf("calibrate-contact %s: K %.1f -> %.1f MPa (x%.3f), exponent n %.3f; held-out stance 30-60 %%: "
               "peak %.1f %% -> %.1f %%, mean %.1f %% -> %.1f %% RMS -> %s\n",
               r.law.material.c_str(), r.law.specified_modulus_MPa, r.law.foundation_modulus_MPa,
-              r.law.foundation_modulus_MPa / r.law.specified_modulus_MPa,
+              r.law.foundation_modulus_MPa / r.law.specified_modulus_MPa, r.law.exponent,
               100 * held["rigid_as_specified"]["peak_pressure_rms"].get<double>(),
               100 * held["rigid_calibrated"]["peak_pressure_rms"].get<double>(),
               100 * held["rigid_as_specified"]["mean_pressure_rms"].get<double>(),
@@ -67,10 +71,11 @@ void add_calibrate_command(CLI::App& app) {
   auto args = std::make_shared<CalibrateArgs>();
   CLI::App* cmd = app.add_subcommand(
       "calibrate-contact",
-      "Fit the rigid insert's elastic-foundation modulus to the deformable insert of the "
+      "Fit the rigid insert's elastic-foundation law p = K_eff g^n (modulus and exponent) to the deformable insert of the "
       "config's implant and material over a gait cycle (Halloran 2005's approach; the "
       "reference load case: the stanmore rig and the shipped gait; the deformable insert: the "
-      "default [deformable] mesh with 2 mm elements, or --element-mm and --set deformable.*). Writes DIR/contact_law.toml (a law file: the commands find "
+      "footprint-refined mesh of the convergence study: 0.5 mm surface elements where a rigid "
+      "cycle finds contact, 6 layers graded 0.15; or --element-mm and --set deformable.*). Writes DIR/contact_law.toml (a law file: the commands find "
       "it by its key when it lies in models/contact_laws/ or the cache, or a config names it as "
       "contact.law_file), DIR/comparison.csv, DIR/summary.json (peak and mean pressure and "
       "contact area errors of the law as specified and calibrated, on the fitting window 0-30 % "
@@ -84,8 +89,12 @@ void add_calibrate_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--element-mm", args->element_mm,
                   "deformable insert element size [mm] (deformable.element_size_mm; default: "
-                  "2, the reference of the shipped and cached laws)")
+                  "0.5, the reference of the shipped and cached laws)")
       ->check(finite_range(0.2, 10.0));
+  cmd->add_option("--exponent", args->exponent,
+                  "fix the law's exponent n of p = K_eff g^n and fit the modulus alone (default: "
+                  "n fitted with the modulus, over 0.3 to 1.5)")
+      ->check(finite_range(0.2, 2.0));
   cmd->add_option("--deformable-from", args->deformable_from,
                   "a finished deformable kneesim run of the same implant, material, rig and "
                   "[deformable] settings to fit against instead of running one");
@@ -99,6 +108,7 @@ void add_calibrate_command(CLI::App& app) {
     if (!args->material.empty()) args->command += " --material " + args->material;
     for (const auto& s : args->sets) args->command += " --set " + s;
     if (args->element_mm > 0.0) args->command += " --element-mm " + std::to_string(args->element_mm);
+    if (args->exponent > 0.0) args->command += " --exponent " + std::to_string(args->exponent);
     calibrate(*args);
   });
 }

@@ -5,10 +5,12 @@
 # [deformable] mesh, about 15 rigid ones; analysis/run/calibrate_contact_law.h) and the law file
 # it writes, with its provenance (command, date, mesh, fitted modulus, held-out errors, stance
 # figures), is copied into models/contact_laws/<implant>_<material>.toml.
-#   tools/scripts/calibrate_contact_laws.sh [--examples] [MATERIAL...]
+#   tools/scripts/calibrate_contact_laws.sh [--examples] [--reuse-deformable] [MATERIAL...]
 # Default: the built-in implant, every shipped material (uhmwpe peek cfr-peek); --examples also
 # the example implants models/examples/dm_stanmore.toml and jw_stanmore.toml (KNEESIM_DATA must
-# hold their meshes). Runs are kept in build/contact_laws/. Cost: one deformable cycle per law
+# hold their meshes). Runs are kept in build/contact_laws/; --reuse-deformable fits against the
+# deformable run a previous call left there (kneesim calibrate-contact --deformable-from, which
+# refuses a run of other settings) instead of running it again. Cost: one deformable cycle per law
 # (minutes each on 2 cores); run it with nice on a shared machine.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -16,8 +18,10 @@ kneesim=${KNEESIM_BIN:-build/tools/kneesim}
 export KNEESIM_DATA="${KNEESIM_DATA:-$(pwd)/../shared/data}"
 implants=("generic:")
 materials=()
+reuse=0
 for a in "$@"; do
   case "$a" in
+    --reuse-deformable) reuse=1 ;;
     --examples) implants+=("dm:models/examples/dm_stanmore.toml" "jw:models/examples/jw_stanmore.toml") ;;
     *) materials+=("$a") ;;
   esac
@@ -29,9 +33,15 @@ for entry in "${implants[@]}"; do
   config=${entry#*:}
   for m in "${materials[@]}"; do
     out=build/contact_laws/${name}_$m
+    from=()
+    if [ $reuse = 1 ] && [ -f "$out/deformable/summary.json" ]; then
+      rm -rf "$out.deformable" && mv "$out/deformable" "$out.deformable"
+      from=(--deformable-from "$out.deformable")
+    fi
     rm -rf "$out"
     echo "calibrate_contact_laws: $name $m -> $out" >&2
-    "$kneesim" calibrate-contact $config --material "$m" --out "$out" --no-plots --quiet
+    "$kneesim" calibrate-contact $config --material "$m" --out "$out" --no-plots --quiet "${from[@]}"
+    if [ ${#from[@]} -gt 0 ]; then mv "$out.deformable" "$out/deformable"; fi
     cp "$out/contact_law.toml" "models/contact_laws/${name}_$m.toml"
   done
 done

@@ -25,6 +25,7 @@ def run(v):
     mean = sum(r["mean_pressure_MPa"] for r in rows) / len(rows)
     v.figure("stance_peak_MPa", peak, "MPa")
     v.figure("stance_mean_MPa", mean, "MPa")
+    v.figure("deformable_mesh", "%s; %d elements" % (p["deformable_mesh"], p["deformable_elements"]))
     v.figure("deformable_stance_peak_MPa", p["stance_peak_MPa_deformable"], "MPa")
     v.figure("deformable_stance_mean_MPa", p["stance_mean_MPa_deformable"], "MPa")
     v.figure("stance_peak_err_pct", 100 * (peak / p["stance_peak_MPa_deformable"] - 1), "%")
@@ -39,5 +40,5 @@ TABLE = """
 | medial share of the contact force over stance (0-60 %) | about 60 % (5 mm medial IE/VV axis, the rig's intent) | {medial_share_pct:.1f} % | `medial_fraction_stance` |
 | mean peak pressure / peak pressure | Pal 2008: peak 25.71 [23.94, 27.67] MPa | {mean_peak_pressure_MPa:.1f} / {peak_pressure_MPa:.1f} MPa | `mean_peak_pressure_MPa`, `peak_pressure_MPa` |
 | rigid contact law | the law calibrated against the deformable insert (models/contact_laws/generic_uhmwpe.toml) | source {law_source}, K_eff = {law_ratio:.3f} K | `contact_law_calibration` |
-| stance (0-60 %) peak / mean contact pressure against the deformable insert (2 mm elements, 4 layers) of the same load case | deformable: {deformable_stance_peak_MPa:.1f} / {deformable_stance_mean_MPa:.1f} MPa; acceptance within 15 % | {stance_peak_MPa:.1f} / {stance_mean_MPa:.1f} MPa ({stance_peak_err_pct:+.1f} / {stance_mean_err_pct:+.1f} %) | `kinematics.csv`, law provenance |
+| stance (0-60 %) peak / mean contact pressure against the deformable insert ({deformable_mesh}) of the same load case | deformable: {deformable_stance_peak_MPa:.1f} / {deformable_stance_mean_MPa:.1f} MPa; acceptance within 15 % | {stance_peak_MPa:.1f} / {stance_mean_MPa:.1f} MPa ({stance_peak_err_pct:+.1f} / {stance_mean_err_pct:+.1f} %) | `kinematics.csv`, law provenance |
 """

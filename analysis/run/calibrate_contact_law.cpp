@@ -108,8 +108,14 @@ void check_fit_inside_search(double k_fit, double k_spec, const std::string& mat
                      implant + "\" ended at the search bound K_eff = " + number(k_fit) +
                      " MPa (search " + number(lo) + " to " + number(hi) + " MPa, " +
                      number(kSearchLo) + " to " + number(kSearchHi) +
-                     " K): no law written; the runs are in " + out.string());
+                     " times the modulus that gives the law as specified's pressure at the strain " +
+                     number(kSearchReferenceStrain) + " with the fitted exponent): no law written; "
+                     "the runs are in " + out.string());
   }
+}
+
+double modulus_search_reference(double k_spec, double exponent) {
+  return k_spec * std::pow(kSearchReferenceStrain, 1.0 - exponent);
 }
 
 ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job) {
@@ -181,11 +187,14 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   // the patch's pressure (its peak over its mean), so the pair can match peak and mean pressure
   // where one modulus trades them against each other
   int evaluations = 0;
-  const double lo = kSearchLo * k_spec_MPa, hi = kSearchHi * k_spec_MPa;
   struct Fit {
     double k = 0.0, objective = 1e300;
   };
   auto fit_modulus = [&](double n) {
+    // K_eff and n trade against each other (the stance strains are about 0.01): the modulus is
+    // searched around the one that gives the law as specified's pressure there
+    const double k_ref = modulus_search_reference(k_spec_MPa, n);
+    const double lo = kSearchLo * k_ref, hi = kSearchHi * k_ref;
     int inner = 0;
     Fit best;
     minimize_log_golden(
@@ -223,7 +232,9 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   }
   const double k_fit = best.k;
   fs::remove_all(out / "fit");
-  check_fit_inside_search(k_fit, k_spec_MPa, base.material.name, models::implant_identity(base), out);
+  const double k_ref = modulus_search_reference(k_spec_MPa, n_fit);
+  const double lo = kSearchLo * k_ref, hi = kSearchHi * k_ref;
+  check_fit_inside_search(k_fit, k_ref, base.material.name, models::implant_identity(base), out);
   if (job.exponent <= 0.0) {
     check_exponent_inside_search(n_fit, base.material.name, models::implant_identity(base), out);
   }

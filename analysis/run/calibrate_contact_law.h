@@ -8,7 +8,7 @@
 // the stanmore rig and the shipped gait): one deformable cycle (or a finished deformable run),
 // the rigid insert with the law as specified, and a nested golden-section search of the law
 // p = K_eff g^n (engine/contact_law.h): the exponent n over log n in [0.3, 1.5] outside, the
-// effective foundation modulus K_eff over log K in [0.01, 10] K inside, minimizing
+// effective foundation modulus K_eff over log K in [0.01, 10] times modulus_search_reference inside, minimizing
 // peak^2 + mean^2 of the normalized RMS frame errors over 0-30 % of the cycle
 // (analysis/run/contact_calibration.h);
 // the errors over 30-60 %, which the fit never saw, are the held-out judgement. A fit that ends
@@ -46,10 +46,17 @@ struct ContactCalibrationReport {
 // throws as run_gait_job does
 ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job);
 
-// a fitted K_eff [MPa] within 5 % of a bound of the search (0.01 to 10 times the specified K
-// [MPa]) is no calibration: InputError naming the material, the implant, the value, the range
-// and the folder `out` the runs are kept in
-void check_fit_inside_search(double k_fit, double k_spec, const std::string& material,
+// the strain at which the modulus search is centred: about the stance strains g = d/h
+inline constexpr double kSearchReferenceStrain = 0.01;
+
+// the modulus [MPa] the search for exponent n is centred on: the one whose law K g^n gives the
+// law as specified's pressure K_spec g at g = kSearchReferenceStrain (K_spec for n = 1)
+double modulus_search_reference(double k_spec, double exponent);
+
+// a fitted K_eff [MPa] within 5 % of a bound of the search (0.01 to 10 times `k_ref`, the
+// modulus_search_reference of the fitted exponent [MPa]) is no calibration: InputError naming
+// the material, the implant, the value, the range and the folder `out` the runs are kept in
+void check_fit_inside_search(double k_fit, double k_ref, const std::string& material,
                              const std::string& implant, const std::filesystem::path& out);
 
 // the same for the fitted exponent n (search 0.3 to 1.5; within 2 % of a bound)

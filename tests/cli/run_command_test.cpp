@@ -66,7 +66,9 @@ TEST_CASE("kneesim run writes the complete result set") {
     REQUIRE(rows[i].size() == cols.size());
     const double pct = std::stod(rows[i][pct_col]);
     CAPTURE(i);
-    CHECK(std::abs(pct - static_cast<double>(i)) <= half_step_pct + 1e-9);
+    // + 1e-6 %: the CSV's gait_pct is printed to 7 significant digits, and a row exactly half
+    // a step from its percentage (a tie) prints its rounding
+    CHECK(std::abs(pct - static_cast<double>(i)) <= half_step_pct + 1e-6);
   }
   MESSAGE("kneesim run (edge 2 mm): AP ROM " << summary["ap_rom_mm"] << " mm, IE ROM "
           << summary["ie_rom_deg"] << " deg, peak pressure " << summary["peak_pressure_MPa"]

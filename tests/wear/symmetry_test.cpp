@@ -10,10 +10,10 @@
 //  - the stanmore rig's free ML, VV and IE: the diagonal asymmetry gives both condyles the
 //    same small ML friction/contact force, the tibia drifts ~0.06 mm in ML and, its light IE
 //    (3e-5 kg m^2) following the asymmetry's small friction moment, +-0.025 deg in IE; the
-//    volumes differ by 1.04e-3 (measured; 2e-4 with the former 0.01 kg m^2 IE inertia, whose
-//    inertia filtered that moment). The tolerance is 3e-3, ~3x that, while a 1 mm medial
-//    offset of the tibial VV pivot (a control run, 8.9e-2) exceeds it 30 times, so the test
-//    can fail.
+//    volumes differ by 3.0e-3 (measured with the calibrated law p = K_eff g^0.63, whose flatter
+//    pressure weights the patch border, where the diagonals differ, more than the n = 1 law's
+//    1.04e-3). The tolerance is 6e-3, 2x that, while a 1 mm medial offset of the tibial VV pivot
+//    (the control run below, printed: 8.8e-2) exceeds it 15 times, so the test can fail.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -123,10 +123,11 @@ TEST_CASE("the generic implant is mirror-symmetric about the sagittal plane (ver
 }
 
 TEST_CASE("symmetric loading of the symmetric implant: medial = lateral wear") {
-  SUBCASE("stanmore rig, ML, VV and IE free: within 3e-3") {
+  SUBCASE("stanmore rig, ML, VV and IE free: within 6e-3") {
     const SideVolumes s = run(kSymmetric, 1'000'000, 500'000);
+    MESSAGE("symmetric, free: medial/lateral volumes differ by " << s.rel());
     CHECK(s.medial > 0.0);
-    CHECK(s.rel() < 3e-3);
+    CHECK(s.rel() < 6e-3);
     CHECK(s.max_ml < 1e-4);  // the midline loading keeps the tibia centred (0.1 mm)
   }
   SUBCASE("tibial ML, VV and IE locked: equal to rounding (translated condyles)") {
@@ -144,6 +145,7 @@ TEST_CASE("symmetric loading of the symmetric implant: medial = lateral wear") {
     std::vector<models::Override> o = kSymmetric;
     o[1] = {"rig.tibia_pivot_medial_mm", "1"};
     const SideVolumes s = run(o, 500'000, 500'000);
+    MESSAGE("control, 1 mm VV pivot offset: medial/lateral volumes differ by " << s.rel());
     CHECK(s.rel() > 1e-2);
     CHECK(s.medial > s.lateral);  // a positive offset is medial (config.h)
   }

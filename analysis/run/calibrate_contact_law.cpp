@@ -415,6 +415,7 @@ nlohmann::json describe_contact_law(const models::Config& c, double modulus_MPa)
   nlohmann::json j;
   j["law"] = c.contact_law;
   j["foundation_modulus_MPa"] = modulus_MPa;
+  j["exponent"] = c.contact_law_exponent;  // n of p = K g^n
   j["specified_modulus_MPa"] =
       engine::foundation_modulus(c.material.elastic_modulus_MPa, c.material.poisson);
   j["source"] = r.source;

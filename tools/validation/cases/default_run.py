@@ -19,6 +19,7 @@ def run(v):
     law = s["contact_law_calibration"]
     v.figure("law_source", law["source"])
     v.figure("law_ratio", law["foundation_modulus_MPa"] / law["specified_modulus_MPa"])
+    v.figure("law_exponent", law["exponent"])
     rows = [r for r in v.csv(out, "kinematics.csv") if r["gait_pct"] <= 60.0 and r["contact_area_mm2"] > 0.0]
     p = law["provenance"]
     peak = max(r["peak_pressure_MPa"] for r in rows)
@@ -39,6 +40,6 @@ TABLE = """
 | axial contact force at the peak load vs the applied axial force | {peak_axial_load_N:.1f} N (equilibrium) | {contact_axial_force_N:.1f} N ({force_balance_pct:+.2f} %) | `contact_axial_force_at_peak_load_N`, `peak_axial_load_N` |
 | medial share of the contact force over stance (0-60 %) | about 60 % (5 mm medial IE/VV axis, the rig's intent) | {medial_share_pct:.1f} % | `medial_fraction_stance` |
 | mean peak pressure / peak pressure | Pal 2008: peak 25.71 [23.94, 27.67] MPa | {mean_peak_pressure_MPa:.1f} / {peak_pressure_MPa:.1f} MPa | `mean_peak_pressure_MPa`, `peak_pressure_MPa` |
-| rigid contact law | the law calibrated against the deformable insert (models/contact_laws/generic_uhmwpe.toml) | source {law_source}, K_eff = {law_ratio:.3f} K | `contact_law_calibration` |
+| rigid contact law | the law calibrated against the deformable insert (models/contact_laws/generic_uhmwpe.toml) | source {law_source}, p = K_eff g^n with K_eff = {law_ratio:.3f} K, n = {law_exponent:.3f} | `contact_law_calibration` |
 | stance (0-60 %) peak / mean contact pressure against the deformable insert ({deformable_mesh}) of the same load case | deformable: {deformable_stance_peak_MPa:.1f} / {deformable_stance_mean_MPa:.1f} MPa; acceptance within 15 % | {stance_peak_MPa:.1f} / {stance_mean_MPa:.1f} MPa ({stance_peak_err_pct:+.1f} / {stance_mean_err_pct:+.1f} %) | `kinematics.csv`, law provenance |
 """

@@ -139,6 +139,7 @@ struct ElementLoop {
   double* penetration;
   double* slip_speed;
   double* friction_viscosity;
+  double* contact_stiffness;
   Eigen::Vector3d* slip_velocity_T;
   Eigen::Vector3d* element_force_W;
 
@@ -172,6 +173,7 @@ struct ElementLoop {
         penetration(data.penetration.data()),
         slip_speed(data.slip_speed.data()),
         friction_viscosity(data.friction_viscosity.data()),
+        contact_stiffness(data.contact_stiffness.data()),
         slip_velocity_T(data.slip_velocity_T.data()),
         element_force_W(data.element_force_W.data()) {}
 
@@ -240,8 +242,8 @@ struct ElementLoop {
                                   (tibia.v + tibia.w.cross(c_W - tibia.pivot));
     const double closing = -v_rel.dot(n_W);  // rate of penetration [m/s]
     const Eigen::Vector3d v_slip = v_rel + closing * n_W;
-    const double p_elastic = ef_pressure(law.law, law.foundation_modulus, law.exponent, d, h);
-    const double k_area = ef_stiffness(law.law, law.foundation_modulus, law.exponent, d, h);
+    const auto [p_elastic, k_area] =
+        ef_pressure_and_stiffness(law.law, law.foundation_modulus, law.exponent, d, h);
     const double p_damping = law.damping_beta * k_area * closing;
     // the damper may at most double or cancel the elastic pressure: an impact (a fast closing
     // speed) must not produce a force spike that the stable step does not cover
@@ -254,6 +256,7 @@ struct ElementLoop {
     terms.pressure = p_elastic;
     terms.penetration = d;
     terms.ke = area[e] * k_area;
+    contact_stiffness[e] = terms.ke;
     terms.ce = area[e] * law.friction * p /
                std::sqrt(v_slip.squaredNorm() + law.slip_regularization * law.slip_regularization);
     pressure[e] = p_elastic;
@@ -275,8 +278,7 @@ struct ElementLoop {
     t.force_W = element_force_W[e];
     t.pressure = pressure[e];
     t.penetration = penetration[e];
-    t.ke = area[e] * ef_stiffness(law.law, law.foundation_modulus, law.exponent, penetration[e],
-                                  thickness[e]);
+    t.ke = contact_stiffness[e];
     t.ce = friction_viscosity[e];
     set_friction_terms(e, t);
     return t;

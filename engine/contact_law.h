@@ -75,6 +75,20 @@ inline double ef_stiffness(ContactLaw law, double K, double n, double d, double 
   return 0.0;
 }
 
+// pressure [Pa] and tangent stiffness per area [Pa/m] together, for the contact loop: the strain
+// g (a log for the nonlinear law) is taken once; the same expressions as ef_pressure and
+// ef_stiffness, so the same bits
+struct EfPressureStiffness {
+  double pressure;
+  double stiffness;
+};
+inline EfPressureStiffness ef_pressure_and_stiffness(ContactLaw law, double K, double n, double d,
+                                                     double h) {
+  if (d <= 0.0 || n == 1.0) return {ef_pressure(law, K, n, d, h), ef_stiffness(law, K, n, d, h)};
+  const double g = ef_strain(law, d, h);
+  return {ef_pressure_at_strain(K, n, g), ef_pressure_slope(K, n, g) * ef_strain_rate(law, d, h)};
+}
+
 // regularized Coulomb traction [Pa] opposing the tangential slip velocity v_s [m/s]
 inline Eigen::Vector3d friction_traction(double mu, double p, const Eigen::Vector3d& v_s,
                                          double eps) {

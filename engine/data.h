@@ -66,6 +66,7 @@ struct Data {
   std::vector<Eigen::Vector3d> slip_velocity_T;  // slip velocity in T [m/s]
   std::vector<Eigen::Vector3d> element_force_W;  // force on the femur [N]
   std::vector<double> friction_viscosity;  // d|friction force|/d|slip| at the slip [N s/m]
+  std::vector<double> contact_stiffness;   // area x dp/dd at the penetration [N/m]
 
   // current kinematics
   std::array<std::array<double, kNumDof>, 2> q{};    // DOF values [m or rad]

@@ -285,6 +285,7 @@ Data make_data(const Model& model) {
   data.slip_velocity_T.assign(n, Eigen::Vector3d::Zero());
   data.element_force_W.assign(n, Eigen::Vector3d::Zero());
   data.friction_viscosity.assign(n, 0.0);
+  data.contact_stiffness.assign(n, 0.0);
   for (int e = 0; e < n; ++e) {
     data.insert_radius = std::max(data.insert_radius, model.insert.centroid_T[e].norm());
   }

@@ -46,6 +46,19 @@ TEST_CASE("elastic-foundation laws with an exponent: p = K g^n") {
       CHECK(ef_pressure(ContactLaw::kNonlinear, K, 1.0, d, h) == -K * std::log(1.0 - d / h));
     }
   }
+  SUBCASE("the contact loop's fused kernel gives ef_pressure's and ef_stiffness's bits") {
+    // invariant: the loop takes both from one strain evaluation; any difference would change
+    // every result of the default law
+    for (ContactLaw law : {ContactLaw::kLinear, ContactLaw::kNonlinear}) {
+      for (double n : {0.5, 0.628, 1.0, 1.3}) {
+        for (double d : {-1e-6, 0.0, 1e-8, 3.3e-5, 1.7e-3}) {
+          const EfPressureStiffness ps = ef_pressure_and_stiffness(law, K, n, d, h);
+          CHECK(ps.pressure == ef_pressure(law, K, n, d, h));
+          CHECK(ps.stiffness == ef_stiffness(law, K, n, d, h));
+        }
+      }
+    }
+  }
   SUBCASE("a paraboloidal overclosure: the patch's peak pressure is n + 1 times its mean") {
     // d(r) = d0 - r^2 / (2 R) on a bed of 0.02 mm square elements: p = K (d/h)^n gives
     // P = 2 pi R K d0^(n+1) / ((n + 1) h^n) over the area pi 2 R d0, so the mean pressure is

@@ -1,8 +1,9 @@
 #!/bin/bash
 # Regenerates the shipped calibrated contact laws (models/contact_laws/*.toml): for each implant
 # and each shipped material, `kneesim calibrate-contact` fits the rigid insert's effective
-# foundation modulus to the deformable insert (one deformable gait cycle with the default
-# [deformable] mesh, about 15 rigid ones; analysis/run/calibrate_contact_law.h) and the law file
+# foundation modulus and exponent to the deformable insert (one deformable gait cycle on the
+# reference mesh, models::kContactCalibrationReferenceMesh, and about 200 short rigid ones;
+# analysis/run/calibrate_contact_law.h) and the law file
 # it writes, with its provenance (command, date, mesh, fitted modulus, held-out errors, stance
 # figures), is copied into models/contact_laws/<implant>_<material>.toml.
 #   tools/scripts/calibrate_contact_laws.sh [--examples] [--reuse-deformable] [MATERIAL...]

@@ -3,7 +3,8 @@
 
     /usr/bin/python3 tools/scripts/ccx_crosscheck.py --out DIR [CONFIG] [--set KEY=VALUE ...]
         [--materials elastic,elastoplastic] [--pcts 0,13,45] [--penalty-factor 100]
-        [--kneesim build/tools/kneesim] [--ccx ccx] [--threads 1] [--tolerance-pct 10]
+        [--submodel-mm R] [--kneesim build/tools/kneesim] [--ccx ccx] [--threads 1]
+        [--tolerance-pct 10]
 
 For each insert material model it runs `kneesim run --set insert=deformable --set
 contact.friction=0 --cycles 2 --export-fe` (heel strike and the two highest axial-load peaks of
@@ -27,6 +28,15 @@ The CalculiX model (what makes the comparison fair: docs/validation.md, "Deforma
   the forces may differ), step 2 frees the femur's translation along T's y and loads it with
   the y component of kneesim's contact force (same axial load: the pose may differ); the other
   five rigid-body DOFs stay at kneesim's pose.
+
+--submodel-mm R: CalculiX solves a cut-out submodel instead of the whole insert (for meshes too
+large for a direct solve of every C3D8I element: the footprint-refined reference mesh): the
+elements with a node within R mm, in the insert's x-z plane, of a top node kneesim has in contact
+at the instant (whole columns through the thickness), the cut nodes held at kneesim's
+displacement of the instant in both steps (base nodes stay fixed). Nodes and elements keep
+kneesim's numbers. Von Mises maxima are then taken over the submodel's elements for both codes;
+the contact measures are unchanged (no node outside the submodel is in contact in kneesim).
+tools/validation/cases/ccx_crosscheck_submodel.py compares it with the whole insert.
 
 Contact measures, computed the same way for both codes on the same nodes (kneesim's
 definitions): nodal pressure (kneesim: penalty force / tributary area; ccx: CPRESS of the
@@ -120,13 +130,46 @@ def fmt(v):
     return "%.10g" % v
 
 
-def write_deck(path, export, instant, penalty, lift_mm, axial_load_N):
+def submodel_elements(export, instant, radius_mm):
+    """the elements of the cut-out submodel: every element with a node within radius_mm (in the
+    insert's x-z plane, undeformed) of a top node kneesim has in contact at the instant, so the
+    submodel keeps whole columns through the thickness under and around the patch; and the cut
+    nodes (on a kept and a dropped element, not on the base), which CalculiX holds at kneesim's
+    displacement of the instant"""
+    mesh = export["mesh"]
+    nodes = np.asarray(mesh["nodes_mm"], float)
+    elements = np.asarray(mesh["elements"], int)
+    top = np.asarray(export["contact"]["top_nodes"], int)
+    touching = top[np.asarray(instant["top_node_pressure_MPa"], float) > 0.0]
+    xz = nodes[:, [0, 2]]
+    near = np.full(len(nodes), np.inf)
+    for a in range(0, len(nodes), 4000):
+        d = xz[a:a + 4000, None, :] - xz[touching][None, :, :]
+        near[a:a + 4000] = np.sqrt((d * d).sum(-1)).min(1)
+    keep = (near[elements] <= radius_mm).any(1)
+    kept_nodes = np.zeros(len(nodes), bool)
+    kept_nodes[elements[keep].ravel()] = True
+    dropped_nodes = np.zeros(len(nodes), bool)
+    dropped_nodes[elements[~keep].ravel()] = True
+    cut = kept_nodes & dropped_nodes
+    cut[np.asarray(mesh["base_nodes"], int)] = False
+    return keep, np.flatnonzero(cut)
+
+
+def write_deck(path, export, instant, penalty, lift_mm, axial_load_N, keep=None, cut=()):
+    """keep: the elements of a cut-out submodel (None: the whole insert); cut: its cut nodes,
+    held at kneesim's displacement of the instant in both steps"""
     mesh = export["mesh"]
     mat = export["material"]
     nodes = np.asarray(mesh["nodes_mm"], float)
     elements = mesh["elements"]
-    top_nodes = export["contact"]["top_nodes"]
+    if keep is None:
+        keep = np.ones(len(elements), bool)
+    used = np.zeros(len(nodes), bool)
+    used[np.asarray(elements, int)[keep].ravel()] = True
+    top_nodes = [t for t in export["contact"]["top_nodes"] if used[t]]
     faces = top_face_numbers(elements, mesh["top_faces"], mesh["top_face_element"])
+    u_cut = (np.asarray(instant["node_position_mm"], float)[cut] - nodes[cut]) if len(cut) else []
     X = np.asarray(instant["X_TF_mm"], float)
     X[1, 3] += lift_mm
     fv, ft, fn = femur_patch(export, X, nodes[top_nodes])
@@ -142,7 +185,8 @@ def write_deck(path, export, instant, penalty, lift_mm, axial_load_N):
     w("** units mm, N, MPa; frame T of kneesim (y up, z < 0 medial)")
     w("*NODE, NSET=NINSERT")
     for i, p in enumerate(nodes):
-        w("%d, %s, %s, %s" % (i + 1, fmt(p[0]), fmt(p[1]), fmt(p[2])))
+        if used[i]:
+            w("%d, %s, %s, %s" % (i + 1, fmt(p[0]), fmt(p[1]), fmt(p[2])))
     w("*NODE, NSET=NFEMUR")
     for k in range(len(fv)):
         w("%d, %s, %s, %s" % (outer_id[k], fmt(fv[k, 0]), fmt(fv[k, 1]), fmt(fv[k, 2])))
@@ -153,7 +197,8 @@ def write_deck(path, export, instant, penalty, lift_mm, axial_load_N):
     w("%d, %s, %s, %s" % (rot, fmt(X[0, 3]), fmt(X[1, 3]), fmt(X[2, 3])))
     w("*ELEMENT, TYPE=C3D8I, ELSET=EINSERT")
     for e, conn in enumerate(elements):
-        w("%d, %s" % (e + 1, ", ".join(str(c + 1) for c in conn)))
+        if keep[e]:
+            w("%d, %s" % (e + 1, ", ".join(str(c + 1) for c in conn)))
     # wedges: inner triangle (1-2-3) below the outer one (4-5-6), both counter-clockwise seen
     # from outside, so the element's volume is positive and face S2 is the outer surface
     w("*ELEMENT, TYPE=C3D6, ELSET=EFEMUR")
@@ -162,11 +207,11 @@ def write_deck(path, export, instant, penalty, lift_mm, axial_load_N):
                                           inner_id[t[2]], outer_id[t[0]], outer_id[t[1]],
                                           outer_id[t[2]]))
     w("*NSET, NSET=NBASE")
-    base = [b + 1 for b in mesh["base_nodes"]]
+    base = [b + 1 for b in mesh["base_nodes"] if used[b]]
     for a in range(0, len(base), 16):
         w(", ".join(str(b) for b in base[a:a + 16]))
     w("*ELSET, ELSET=ESURFACE")
-    surf = sorted({e + 1 for e in mesh["top_face_element"]})
+    surf = sorted({e + 1 for e in mesh["top_face_element"] if keep[e]})
     for a in range(0, len(surf), 16):
         w(", ".join(str(b) for b in surf[a:a + 16]))
     w("*MATERIAL, NAME=INSERT")
@@ -189,7 +234,8 @@ def write_deck(path, export, instant, penalty, lift_mm, axial_load_N):
     w("*RIGID BODY, ELSET=EFEMUR, REF NODE=%d, ROT NODE=%d" % (ref, rot))
     w("*SURFACE, NAME=SINSERT, TYPE=ELEMENT")
     for e, f in zip(mesh["top_face_element"], faces):
-        w("%d, S%d" % (e + 1, f))
+        if keep[e]:
+            w("%d, S%d" % (e + 1, f))
     w("*SURFACE, NAME=SFEMUR, TYPE=ELEMENT")
     for k in range(len(ft)):
         w("%d, S2" % (e_ins + 1 + k))
@@ -219,6 +265,9 @@ def write_deck(path, export, instant, penalty, lift_mm, axial_load_N):
     w("0.2, 1.0, 1e-6, 0.25")
     w("*BOUNDARY")
     w("NREF, 2, 2, %s" % fmt(-lift_mm))
+    cut_lines = ["%d, %d, %d, %s" % (n + 1, c + 1, c + 1, fmt(u[c]))
+                 for n, u in zip(cut, u_cut) for c in range(3)]
+    L.extend(cut_lines)
     L.extend(outputs)
     w("*END STEP")
     # step 2: the femur's y translation free under kneesim's axial contact force
@@ -230,13 +279,15 @@ def write_deck(path, export, instant, penalty, lift_mm, axial_load_N):
     w("NROT, 1, 3")
     w("NREF, 1, 1")
     w("NREF, 3, 3")
+    L.extend(cut_lines)
     w("*CLOAD, AMPLITUDE=HOLD")
     w("%d, 2, %s" % (ref, fmt(-axial_load_N)))
     L.extend(outputs)
     w("*END STEP")
     with open(path, "w") as f:
         f.write("\n".join(L) + "\n")
-    return {"femur_triangles": len(ft), "femur_nodes": len(fv), "ref_node": ref}
+    return {"femur_triangles": len(ft), "femur_nodes": len(fv), "ref_node": ref,
+            "elements": int(keep.sum()), "cut_nodes": len(cut)}
 
 
 # ----------------------------------------------------------------------------- ccx output
@@ -284,10 +335,12 @@ def von_mises(s):
                      + 3.0 * (sxy ** 2 + sxz ** 2 + syz ** 2))
 
 
-def stress_measures(vm_element, surface_mask):
+def stress_measures(vm_element, surface_mask, keep):
+    """the largest element von Mises stress in the surface layer and below it, over the
+    elements CalculiX has (keep: the whole insert, or the submodel's elements)"""
     vm = np.asarray(vm_element, float)
-    return {"von_mises_surface_MPa": float(vm[surface_mask].max()),
-            "von_mises_subsurface_MPa": float(vm[~surface_mask].max())}
+    return {"von_mises_surface_MPa": float(vm[surface_mask & keep].max()),
+            "von_mises_subsurface_MPa": float(vm[~surface_mask & keep].max())}
 
 
 def run_ccx(ccx, deck_dir, threads, log):
@@ -401,12 +454,19 @@ def crosscheck(args, export_path, model_label, kneesim_seconds, rows, details):
         lift = 1.2 * (np.linalg.norm(x[top] - nodes[top], axis=1).max() + pen.max()) + 0.02
         axial = -inst["contact_force_on_insert_T_N"][1]
         kn = contact_measures(p_k, area, top_z)
-        kn.update(stress_measures(inst["element_von_mises_MPa"], surface))
+        if args.submodel_mm is not None and kn["nodes_in_contact"] > 0:
+            keep, cut = submodel_elements(export, inst, args.submodel_mm)
+        else:
+            keep, cut = np.ones(n_el, bool), np.zeros(0, int)
+        kn.update(stress_measures(inst["element_von_mises_MPa"], surface, keep))
         kn["plastic_strain_max"] = float(max(inst["element_plastic_strain"]))
         kn["axial_force_N"] = axial
-        info = write_deck(os.path.join(d, "insert.inp"), export, inst, penalty, lift, axial)
-        print("%s %.1f %%: axial contact force %.0f N, lift %.3f mm, %d femur triangles" % (
-            model_label, inst["gait_pct"], axial, lift, info["femur_triangles"]), flush=True)
+        info = write_deck(os.path.join(d, "insert.inp"), export, inst, penalty, lift, axial,
+                          keep, cut)
+        print("%s %.1f %%: axial contact force %.0f N, lift %.3f mm, %d femur triangles, "
+              "%d of %d elements in CalculiX, %d cut nodes at kneesim's displacement" % (
+                  model_label, inst["gait_pct"], axial, lift, info["femur_triangles"],
+                  info["elements"], n_el, info["cut_nodes"]), flush=True)
         if kn["nodes_in_contact"] == 0:
             print("  kneesim has no contact at this instant: skipped", flush=True)
             continue
@@ -414,14 +474,15 @@ def crosscheck(args, export_path, model_label, kneesim_seconds, rows, details):
         results = read_results(d, export, n_el)
         for step, bc in zip(results, ("same pose", "same axial load")):
             cx = contact_measures(step["cpress"], area, top_z)
-            cx.update(stress_measures(step["von_mises"], surface))
+            cx.update(stress_measures(step["von_mises"], surface, keep))
             cx["von_mises_ip_max_MPa"] = float(step["von_mises_ip"].max())
             cx["plastic_strain_max"] = float(step["peeq"].max())
             # RF: the force the prescribed DOF needs, opposite to the insert's push on the femur
             cx["axial_force_N"] = -float(step["rf"][1]) if step["rf"] else float("nan")
             cx["femur_y_mm"] = float(step["u"][1]) + lift if step["u"] else float("nan")
             row = {"model": model_label, "gait_pct": round(inst["gait_pct"], 2), "bc": bc,
-                   "ccx_seconds": round(seconds, 1)}
+                   "ccx_seconds": round(seconds, 1), "ccx_elements": info["elements"],
+                   "ccx_cut_nodes": info["cut_nodes"]}
             for key in ("peak_pressure_MPa", "mean_pressure_MPa", "contact_area_mm2",
                         "medial_force_N", "lateral_force_N", "von_mises_surface_MPa",
                         "von_mises_subsurface_MPa", "axial_force_N", "plastic_strain_max"):
@@ -472,7 +533,8 @@ def write_tables(args, rows, details):
             return [strict(x) for x in v]
         return v
     with open(os.path.join(args.out, "crosscheck.json"), "w") as f:
-        json.dump(strict({"rows": rows, "runs": details, "penalty_factor": args.penalty_factor}),
+        json.dump(strict({"rows": rows, "runs": details, "penalty_factor": args.penalty_factor,
+                          "submodel_mm": args.submodel_mm}),
                   f, indent=1, allow_nan=False)
     lines = ["| material | gait % | CalculiX BC | peak pressure MPa kneesim / ccx | mean pressure "
              "MPa | contact area mm² | axial force N | medial share | von Mises surface MPa | "
@@ -507,6 +569,10 @@ def main():
     ap.add_argument("--penalty-factor", type=float, default=100.0,
                     help="ccx penalty slope over the median surface element stiffness per area "
                     "(lambda + 2 mu) / L_n (kneesim's penalty)")
+    ap.add_argument("--submodel-mm", type=float,
+                    help="CalculiX solves a cut-out submodel: the elements within this distance "
+                    "(x-z) of kneesim's contact nodes at the instant, full thickness, the cut "
+                    "held at kneesim's displacement (default: the whole insert)")
     ap.add_argument("--kneesim", default="build/tools/kneesim")
     ap.add_argument("--ccx", default="ccx")
     ap.add_argument("--threads", type=int, default=1, help="ccx threads")
@@ -518,6 +584,8 @@ def main():
         fail("ccx (%s) not found; tools/scripts/setup.sh installs calculix-ccx" % args.ccx)
     if not (args.penalty_factor > 0):
         fail("--penalty-factor %g is out of range (must be > 0)" % args.penalty_factor)
+    if args.submodel_mm is not None and not (args.submodel_mm > 0):
+        fail("--submodel-mm %g is out of range (must be > 0)" % args.submodel_mm)
     os.makedirs(args.out, exist_ok=True)
     rows, details = [], []
     if args.export:

@@ -1,0 +1,91 @@
+"""kneesim's deformable insert against CalculiX (ccx, an independent implicit FE code) on the
+contact-law calibration's reference mesh (0.5 mm surface elements over the footprint, 6 layers
+graded 0.15: the mesh on which UHMWPE pressures converge), linear elastic, at the two axial-load
+peaks, same pose and same axial load. CalculiX solves a cut-out submodel: the elements within
+6 mm (x-z) of kneesim's contact nodes at the instant, full thickness, the cut held at kneesim's
+displacement (ccx_crosscheck_submodel checks the cut against whole-insert solutions)."""
+import os
+import shutil
+
+TITLE = "Deformable insert against CalculiX, reference mesh"
+LONG = True  # one kneesim cycle on ~48 000 elements and two ccx submodel solutions
+NOISY = {"kneesim_s_per_cycle": 1.0, "ccx_s_mean": 1.0}
+
+REFERENCE_MESH = ["deformable.element_size_mm=0.5", "deformable.layers=6",
+                  "deformable.grading=0.15", "deformable.refine=contact"]
+SUBMODEL_MM = 6.0
+# the load peaks of the first cycle: CalculiX takes kneesim's pose and axial force of the
+# instant, whichever cycle it is in (heel strike of the first cycle is the start of the run,
+# not a heel strike: it needs a second cycle, which this machine's time did not allow)
+CYCLES = 1
+PCTS = (13, 45)
+BCS = (("pose", "same pose"), ("load", "same axial load"))
+QUANTITIES = (("peak", "peak_pressure_MPa", 2), ("mean", "mean_pressure_MPa", 2),
+              ("area", "contact_area_mm2", 1), ("force", "axial_force_N", 0),
+              ("share", "medial_share", 3), ("vms", "von_mises_surface_MPa", 2),
+              ("vmb", "von_mises_subsurface_MPa", 2))
+
+
+def _args():
+    sets = [a for kv in REFERENCE_MESH + ["solver.threads=2"] for a in ("--set", kv)]
+    return sets + ["--cycles", str(CYCLES), "--materials", "elastic",
+                   "--pcts", ",".join(str(p) for p in PCTS), "--submodel-mm", "%g" % SUBMODEL_MM]
+
+
+def run(v):
+    if shutil.which("ccx") is None:
+        raise v.skip("needs CalculiX (ccx); tools/scripts/setup.sh installs calculix-ccx")
+    out = os.path.join(v.dir, "crosscheck")
+    script = os.path.join(v.source, "tools", "scripts", "ccx_crosscheck.py")
+    v.tool("/usr/bin/python3", [script, "--out", out, "--kneesim",
+                                os.path.join(v.build, "tools", "kneesim")] + _args(),
+           record="/usr/bin/python3 tools/scripts/ccx_crosscheck.py --out DIR " + " ".join(_args()))
+    result = v.json(out, "crosscheck.json")
+    seconds = []
+    for r in result["rows"]:
+        pct = int(round(r["gait_pct"]))
+        bc = "pose" if r["bc"] == "same pose" else "load"
+        for q, name, _ in QUANTITIES:
+            for code, side in (("k", "kneesim_"), ("c", "ccx_")):
+                v.figure(f"p{pct}_{bc}_{q}_{code}", r[side + name])
+            if q in ("peak", "mean", "area"):
+                a, b = r["kneesim_" + name], r["ccx_" + name]
+                v.figure(f"p{pct}_{bc}_{q}_d", 100.0 * (a - b) / b, "%")
+        v.figure(f"p{pct}_ccx_elements", r["ccx_elements"])
+        if bc == "pose":
+            seconds.append(r["ccx_seconds"])
+    run0 = result["runs"][0]
+    v.figure("elements", run0["elements"])
+    v.figure("penalty_factor", result["penalty_factor"])
+    v.figure("kneesim_penalty_MPa_per_mm", run0["kneesim_penalty_median_MPa_per_mm"], "MPa/mm")
+    v.figure("kneesim_s_per_cycle", run0["kneesim_seconds"] / CYCLES, "s")
+    v.figure("ccx_s_mean", sum(seconds) / len(seconds), "s")
+
+
+def _table():
+    head = ("| gait % | CalculiX femur | CalculiX elements | peak pressure MPa, kneesim / ccx | "
+            "mean pressure MPa | contact area mm² | axial contact force N | medial share | "
+            "von Mises surface layer MPa | von Mises subsurface MPa |\n" + "|---" * 10 + "|\n")
+    rows = []
+    for pct in PCTS:
+        for bc, label in BCS:
+            cells = []
+            for q, _, digits in QUANTITIES:
+                cell = "{p%d_%s_%s_k:.%df} / {p%d_%s_%s_c:.%df}" % (pct, bc, q, digits,
+                                                                 pct, bc, q, digits)
+                if q in ("peak", "mean", "area"):
+                    cell += " ({p%d_%s_%s_d:+.1f} %%)" % (pct, bc, q)
+                cells.append(cell)
+            rows.append("| %d | %s | {p%d_ccx_elements:.0f} | %s |" % (pct, label, pct,
+                                                                    " | ".join(cells)))
+    tail = ("\nkneesim's insert: the reference mesh ({elements:.0f} hex8 elements), linear "
+            "elastic, the load peaks of its first gait cycle; CalculiX: the submodel within %g mm "
+            "of kneesim's contact nodes (its elements in the third column), C3D8I, penalty slope "
+            "{penalty_factor:.0f} x the surface element's stiffness per area (kneesim's median "
+            "{kneesim_penalty_MPa_per_mm:.0f} MPa/mm); run time on this machine: kneesim "
+            "{kneesim_s_per_cycle:.0f} s per gait cycle, ccx {ccx_s_mean:.0f} s per instant (two "
+            "static steps).\n" % SUBMODEL_MM)
+    return "\n" + head + "\n".join(rows) + "\n" + tail
+
+
+TABLE = _table()

@@ -1,8 +1,11 @@
 """kneesim diagnose kinematics: the Grand Challenge DM subject's in-vivo AP and IE (fluoroscopy)
 against the force-controlled stanmore rig driven by the measured flexion."""
+import math
+
 TITLE = "Diagnosis of the DM in-vivo kinematics against the rig"
 LONG = True  # about 380 rig simulations (detection limits included): 2-6 minutes
-NOISY = {"seconds": 1.0}
+# a wall time on a shared machine: recorded, not compared (119-406 s between two runs of one build)
+NOISY = {"seconds": math.inf}
 IMAGES = {"docs/img/diagnosis_kinematics_dm.png": "dm/diagnosis.png"}
 
 

@@ -1,10 +1,12 @@
 """kneesim diagnose forces: the Grand Challenge JW knee's measured medial compartment force
 against the stanmore rig driven by the same measured loads (two cycles, each held out)."""
+import math
 import time
 
 TITLE = "Diagnosis of the JW in-vivo compartment forces against the rig"
 LONG = True  # 56 rig simulations of 2 cycles: 1-3 minutes
-NOISY = {"wall_s": 1.0}
+# a wall time on a shared machine: recorded, not compared (21-57 s between two runs of one build)
+NOISY = {"wall_s": math.inf}
 IMAGES = {"docs/img/forces_jw_diagnosis.png": "jw/diagnosis.png"}
 
 

@@ -2,8 +2,14 @@
 own hex mesh at heel strike and the two axial-load peaks: the femur rigid at kneesim's pose
 (same pose) and loaded with kneesim's axial contact force (same load), elastic and J2; the
 comparison's method is tools/scripts/ccx_crosscheck.py's docstring and docs/validation.md."""
+import importlib.util
 import os
 import shutil
+
+_spec = importlib.util.spec_from_file_location(
+    "kneesim_ccx_common", os.path.join(os.path.dirname(__file__), "_ccx_common.py"))
+C = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(C)
 
 TITLE = "Deformable insert against CalculiX"
 LONG = True  # two kneesim runs of 2 cycles and seven ccx static solutions: an hour or more
@@ -15,7 +21,7 @@ NOISY = {"kneesim_s_per_cycle": 1.0, "ccx_s_mean": 1.0}
 
 MODELS = ("elastic", "elastoplastic")
 PCTS = (0, 13, 45)
-BCS = (("pose", "same pose"), ("load", "same axial load"))
+BCS = C.BCS
 QUANTITIES = (("peak", "peak_pressure_MPa", 2), ("mean", "mean_pressure_MPa", 2),
               ("area", "contact_area_mm2", 1), ("force", "axial_force_N", 0),
               ("share", "medial_share", 3), ("vms", "von_mises_surface_MPa", 2),
@@ -99,21 +105,4 @@ def _table():
 
 TABLE = _table()
 
-def _soft_table():
-    head = ("| gait % | CalculiX femur, penalty as kneesim's | peak pressure MPa, kneesim / ccx | "
-            "mean pressure MPa | contact area mm² | axial contact force N |\n" + "|---" * 6 + "|\n")
-    rows = []
-    for pct in PCTS:
-        for bc, label in BCS:
-            cells = []
-            for q, digits in (("peak", 2), ("mean", 2), ("area", 1), ("force", 0)):
-                k = "soft%d_%s_%s_" % (pct, bc, q)
-                cell = "{%sk:.%df} / {%sc:.%df}" % (k, digits, k, digits)
-                if q != "force" or bc == "pose":
-                    cell += " ({%sd:+.1f} %%)" % k
-                cells.append(cell)
-            rows.append("| %d | %s | %s |" % (pct, label, " | ".join(cells)))
-    return "\n" + head + "\n".join(rows) + "\n"
-
-
-TABLES = {"penalty": _soft_table()}
+TABLES = {"penalty": C.soft_table(PCTS)}

@@ -5,8 +5,14 @@ peaks, same pose and same axial load; then CalculiX with kneesim's own penalty a
 (the penalty's share of the difference). CalculiX solves a cut-out submodel: the elements within
 6 mm (x-z) of kneesim's contact nodes at the instant, full thickness, the cut held at kneesim's
 displacement (ccx_crosscheck_submodel checks the cut against whole-insert solutions)."""
+import importlib.util
 import os
 import shutil
+
+_spec = importlib.util.spec_from_file_location(
+    "kneesim_ccx_common", os.path.join(os.path.dirname(__file__), "_ccx_common.py"))
+C = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(C)
 
 TITLE = "Deformable insert against CalculiX, reference mesh"
 LONG = True  # one kneesim cycle on ~49 000 elements and three ccx submodel solutions
@@ -21,7 +27,7 @@ SUBMODEL_MM = 6.0
 CYCLES = 1
 PCTS = (13, 45)
 SOFT_PCTS = (13,)  # CalculiX with kneesim's penalty: the first load peak only (time)
-BCS = (("pose", "same pose"), ("load", "same axial load"))
+BCS = C.BCS
 QUANTITIES = (("peak", "peak_pressure_MPa", 2), ("mean", "mean_pressure_MPa", 2),
               ("area", "contact_area_mm2", 1), ("force", "axial_force_N", 0),
               ("share", "medial_share", 3), ("vms", "von_mises_surface_MPa", 2),
@@ -111,21 +117,4 @@ def _table():
 TABLE = _table()
 
 
-def _soft_table():
-    head = ("| gait % | CalculiX femur, penalty as kneesim's | peak pressure MPa, kneesim / ccx | "
-            "mean pressure MPa | contact area mm² | axial contact force N |\n" + "|---" * 6 + "|\n")
-    rows = []
-    for pct in SOFT_PCTS:
-        for bc, label in BCS:
-            cells = []
-            for q, digits in (("peak", 2), ("mean", 2), ("area", 1), ("force", 0)):
-                k = "soft%d_%s_%s_" % (pct, bc, q)
-                cell = "{%sk:.%df} / {%sc:.%df}" % (k, digits, k, digits)
-                if q != "force" or bc == "pose":
-                    cell += " ({%sd:+.1f} %%)" % k
-                cells.append(cell)
-            rows.append("| %d | %s | %s |" % (pct, label, " | ".join(cells)))
-    return "\n" + head + "\n".join(rows) + "\n"
-
-
-TABLES = {"penalty": _soft_table()}
+TABLES = {"penalty": C.soft_table(SOFT_PCTS)}

@@ -2,12 +2,15 @@
 at the first load peak (where the 2 mm mesh's penalty bias is largest): same pose and same axial
 load against CalculiX's near-hard contact. kneesim's penalty per area is (lambda + 2 mu) / L_n,
 so its bias on contact area and mean pressure falls with the surface element's height."""
+import math
 import os
 import shutil
 
 TITLE = "Deformable insert against CalculiX, default mesh"
 LONG = True  # one kneesim run of 2 cycles on the default mesh and one ccx solution of ~20 min
-NOISY = {"kneesim_s_per_cycle": 1.0, "ccx_s": 1.0}
+# run times on a shared machine: recorded, not compared (the 1 mm CalculiX instant took
+# 1001 s and 383 s on two days)
+NOISY = {"kneesim_s_per_cycle": math.inf, "ccx_s": math.inf}
 
 BCS = (("pose", "same pose"), ("load", "same axial load"))
 QUANTITIES = (("peak", "peak_pressure_MPa", 2), ("mean", "mean_pressure_MPa", 2),

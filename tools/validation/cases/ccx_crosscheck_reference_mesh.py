@@ -6,6 +6,7 @@ peaks, same pose and same axial load; then CalculiX with kneesim's own penalty a
 6 mm (x-z) of kneesim's contact nodes at the instant, full thickness, the cut held at kneesim's
 displacement (ccx_crosscheck_submodel checks the cut against whole-insert solutions)."""
 import importlib.util
+import math
 import os
 import shutil
 
@@ -16,7 +17,9 @@ _spec.loader.exec_module(C)
 
 TITLE = "Deformable insert against CalculiX, reference mesh"
 LONG = True  # one kneesim cycle on ~49 000 elements and three ccx submodel solutions
-NOISY = {"kneesim_s_per_cycle": 1.0, "ccx_s_mean": 1.0}
+# run times on a shared machine: recorded, not compared (the 1 mm CalculiX instant took
+# 1001 s and 383 s on two days)
+NOISY = {"kneesim_s_per_cycle": math.inf, "ccx_s_mean": math.inf}
 
 REFERENCE_MESH = ["deformable.element_size_mm=0.5", "deformable.layers=6",
                   "deformable.grading=0.15", "deformable.refine=contact"]

@@ -8,6 +8,7 @@
 #include "engine/contact_law.h"
 #include "engine/due_masks.h"
 #include "engine/kinematics.h"
+#include "engine/rig_coupling.h"
 #include "engine/sdf_pairs.h"
 
 namespace kneesim::engine {
@@ -349,14 +350,28 @@ struct ContactReduction {
   double coulomb = 0.0;
   std::array<CarriageMoments, 2> moments;
   std::array<Eigen::Vector3d, 2> pivots;
+  // the coupled rig step's stiffness between the moved DOFs (model.coupled_rig_step)
+  bool coupled = false;
+  CoupledDofs coupled_dofs;
+  std::array<std::array<Eigen::Vector3d, 3>, 2> axes{};
+  std::array<double, 144> coupling{}, friction_coupling{};
+  const SignedDistanceField* femur_sdf = nullptr;
+  Eigen::Isometry3d X_FW = Eigen::Isometry3d::Identity();
 
   // whether a carriage has a rotational DOF that the integrator moves (free or force-driven):
   // the moments serve only those (the default rig's femur has none: its flexion is
   // prescribed, the other rotations locked), so a carriage without one skips them
   std::array<bool, 2> rotates{};
 
-  ContactReduction(const Model& model, const State& state)
-      : pivots{state.carriages[0].pivot_W, state.carriages[1].pivot_W} {
+  ContactReduction(const Model& model, const State& state, const Data& data)
+      : pivots{state.carriages[0].pivot_W, state.carriages[1].pivot_W},
+        coupled(model.coupled_rig_step) {
+    if (coupled) {
+      coupled_dofs = find_coupled_dofs(model);
+      axes = data.axes;
+      femur_sdf = &model.femur_sdf;
+      X_FW = data.X_WF.inverse();
+    }
     for (int c = 0; c < 2; ++c) {
       for (int i = 3; i < kNumDof; ++i) rotates[c] = rotates[c] || is_moved(model, c, i);
     }
@@ -376,6 +391,16 @@ struct ContactReduction {
     }
     for (int c = 0; c < 2; ++c) {
       if (rotates[c]) moments[c].add(t.ke, t.ce, t.coulomb, t.c_W - pivots[c], t.n_W);
+    }
+    if (coupled) {
+      // the penetration grows along minus the femoral surface's outward normal
+      Eigen::Vector3d grad_F = Eigen::Vector3d::Zero();
+      femur_sdf->sample(X_FW * t.c_W, &grad_F);
+      const double norm = grad_F.norm();
+      const Eigen::Vector3d m_W =
+          norm > 0.0 ? Eigen::Vector3d(-(X_FW.linear().transpose() * grad_F) / norm) : t.n_W;
+      add_contact_coupling(coupled_dofs, t.ke, t.ce, t.c_W, t.n_W, m_W, axes, pivots, coupling,
+                           friction_coupling);
     }
     force += t.force_W;
     moment_O += t.c_W.cross(t.force_W);
@@ -426,6 +451,10 @@ struct ContactReduction {
         f.capacity[3 + i] = moved_r ? std::sqrt(coulomb * std::max(w_r, 0.0)) : 0.0;
       }
     }
+    if (coupled) {
+      data.contact_coupling = coupling;
+      data.friction_coupling = friction_coupling;
+    }
     sum.force_W = force;
     sum.tray_force_W = -force;
     finish_contact_summary(model, weight, stiffness, sum);
@@ -442,7 +471,7 @@ void calc_contact(const Model& model, const State& state, Data& data) {
   data.evaluations += n;
   data.in_contact.clear();
   const ElementLoop loop(model, state, data);
-  ContactReduction reduction(model, state);
+  ContactReduction reduction(model, state, data);
   if (n > kParallelAbove && model.threads > 1) {
     // element-local evaluation in parallel (each element writes only its own slots), then the
     // reduction in element order: bit-identical for any thread count

@@ -88,6 +88,11 @@ struct Data {
                                                               // x = AP [N], y = IE [N m]
 
   ContactSummary contact;
+  // with model.coupled_rig_step: the contact's tangent stiffness between the moved DOFs of
+  // both carriages, row-major 12x12 over engine/rig_coupling.h's slots [N/m, N or N m/rad]
+  std::array<double, 144> contact_coupling{};
+  // and the regularized friction's secant slopes between them, sum_e c_e J_i,t . J_j,t [N s/m ...]
+  std::array<double, 144> friction_coupling{};
   solid::SolidData insert_solid;  // deformable insert scratch (engine/solid/solid.h)
   solid::SurfaceContactData insert_contact;  // its top nodes' pressures and forces
 };

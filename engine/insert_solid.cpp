@@ -6,6 +6,7 @@
 #include "engine/contact.h"
 #include "engine/contact_law.h"
 #include "engine/kinematics.h"
+#include "engine/rig_coupling.h"
 #include "engine/solid/solid_step.h"
 
 namespace kneesim::engine {
@@ -151,6 +152,11 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
   Eigen::Vector3d femur_force = Eigen::Vector3d::Zero(), femur_moment = Eigen::Vector3d::Zero();
   std::array<double, 2> weight{};
   std::array<std::array<double, kNumDof>, 2> stiffness{};
+  const CoupledDofs coupled_dofs =
+      model.coupled_rig_step ? find_coupled_dofs(model) : CoupledDofs{};
+  const std::array<Eigen::Vector3d, 2> pivots{state.carriages[0].pivot_W,
+                                              state.carriages[1].pivot_W};
+  std::array<double, 144> coupling{}, no_friction{};
   out.total_force.setZero();
   out.peak_pressure = 0.0;
   out.area = 0.0;
@@ -196,6 +202,16 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
         stiffness[c][3 + j] += k * jr * jr;
       }
     }
+    if (model.coupled_rig_step) {
+      // friction is on the nodes (data.friction is zero), not in the rig's rows; the node's
+      // contact normal stands for both surfaces'
+      add_contact_coupling(coupled_dofs, k, 0.0, p_W, n_W, n_W, data.axes, pivots, coupling,
+                           no_friction);
+    }
+  }
+  if (model.coupled_rig_step) {
+    data.contact_coupling = coupling;
+    data.friction_coupling = {};
   }
   sum.force_W = femur_force;
   finish_contact_summary(model, weight, stiffness, sum);

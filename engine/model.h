@@ -114,6 +114,9 @@ struct Model {
   double dt_critical = 1e-4;               // estimated stability limit [s]
   IntegratorKind integrator = IntegratorKind::kCentralDifference;
   int threads = 1;                         // OpenMP threads in contact evaluation
+  // every moved rig DOF implicit in the contact's coupled stiffness (engine/rig_coupling.h);
+  // false: the light AP and IE DOFs implicit alone, the rest central difference
+  bool coupled_rig_step = false;
 
   const CarriageModel& femur() const { return carriages[0]; }
   const CarriageModel& tibia() const { return carriages[1]; }

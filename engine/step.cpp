@@ -8,6 +8,7 @@
 #include "engine/implicit_friction.h"
 #include "engine/insert_solid.h"
 #include "engine/kinematics.h"
+#include "engine/rig_coupling.h"
 #include "engine/solid/solid_build.h"
 #include "engine/solid/solid_step.h"
 
@@ -106,6 +107,7 @@ void integrate_carriage(const Model& model, int c, State& state, const Data& dat
         break;
       case DofMode::kFree:
       case DofMode::kForce: {
+        if (model.coupled_rig_step) break;  // rate set by update_coupled_rates
         // the regularized friction is a stiff damper near stick (slope mu p A / eps): it is
         // taken at the new rate (engine/implicit_friction.h), which keeps the update stable
         // for any eps; the rest of the force, as in any central-difference step, at the old one
@@ -242,7 +244,10 @@ StepStatus step(const Model& model, State& state, Data& data) {
   if (solid && data.insert_solid.status != solid::SolidStatus::kOk) {
     return StepStatus::kInvertedElement;
   }
-  // central-difference update: v(n + 1/2), x(n + 1), R(n + 1) on SO(3)
+  // rates v(n + 1/2): each carriage's own (light AP and IE implicit, the rest central
+  // difference), or every moved DOF together in the coupled contact stiffness; then x(n + 1),
+  // R(n + 1) on SO(3)
+  if (model.coupled_rig_step) update_coupled_rates(model, state, data);
   for (int c = 0; c < 2; ++c) integrate_carriage(model, c, state, data);
   state.time += model.dt;
   ++state.step;

@@ -418,6 +418,7 @@ BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
   m.threads = c.threads > 0 ? c.threads : 1;
   m.integrator = c.integrator == "cvode" ? engine::IntegratorKind::kCvode
                                          : engine::IntegratorKind::kCentralDifference;
+  m.coupled_rig_step = c.rig_coupling == "coupled";
   const auto femur_box = bounding_box(out.implant.femur);
   double insert_top = 0.0;
   for (const auto& v : m.insert.vertices_T) insert_top = std::max(insert_top, v.y());

@@ -223,6 +223,7 @@ struct Config {
 
   // [solver]
   std::string integrator = "central_difference";  // "central_difference" | "cvode"
+  std::string rig_coupling = "partitioned";        // "partitioned" | "coupled"
   double dt_safety = 0.8;                  // fraction of the estimated stability limit [-]
   int threads = 1;                         // threads of one run (0: automatic)
   int cycles = 2;                          // gait cycles; outputs come from the last

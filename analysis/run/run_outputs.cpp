@@ -113,6 +113,7 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
   }
   j["friction"] = m.contact.friction;
   j["integrator"] = config.integrator;
+  j["rig_coupling"] = config.rig_coupling;
   j["gait_file"] = m.gait.source();
   j["articular_elements"] = m.insert.size();
   j["dt_s"] = m.dt;

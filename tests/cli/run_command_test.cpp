@@ -91,9 +91,10 @@ TEST_CASE("kneesim run writes the complete result set") {
 
 TEST_CASE("kneesim run with the coupled rig step runs end to end and says so") {
   // solver.rig_coupling = "coupled" (engine/rig_coupling.h) on the built-in implant at 2 mm
-  // edges; reference: the partitioned step's ranges on the same model, which the coupled one
-  // meets within 5 % on the stanmore rig (docs/validation.md, "Rig step": 0.1 % AP, 3 % IE at
-  // 1 mm edges)
+  // edges; reference: the partitioned step's ranges on the same model. The two steps' errors
+  // differ by a few per cent on this rig (docs/validation.md, "Rig step": IE +0.8 and +4.2 %
+  // against CVODE at 1 mm edges; at 2 mm 12.76 against 13.48 deg), so 10 %: a check against
+  // a wrong sign or frame in the coupled rows, not of accuracy (the validation case is that)
   TempDir tmp;
   const fs::path coupled = tmp.path / "coupled", partitioned = tmp.path / "partitioned";
   const Result a = run_kneesim({"run", "--out", coupled.string(), "--no-plots", "--set",
@@ -111,9 +112,9 @@ TEST_CASE("kneesim run with the coupled rig step runs end to end and says so") {
   CHECK(sb["rig_coupling"] == "partitioned");
   CHECK(sa["status"] == "complete");
   CHECK(sa["ap_rom_mm"].get<double>() ==
-        doctest::Approx(sb["ap_rom_mm"].get<double>()).epsilon(0.05));
+        doctest::Approx(sb["ap_rom_mm"].get<double>()).epsilon(0.10));
   CHECK(sa["ie_rom_deg"].get<double>() ==
-        doctest::Approx(sb["ie_rom_deg"].get<double>()).epsilon(0.05));
+        doctest::Approx(sb["ie_rom_deg"].get<double>()).epsilon(0.10));
   // a value that does not exist: one sentence naming the key and the choices, exit 2
   const Result bad = run_kneesim({"run", "--out", (tmp.path / "bad").string(), "--set",
                                   "solver.rig_coupling=implicit"},

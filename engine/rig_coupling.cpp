@@ -100,16 +100,25 @@ void update_coupled_rates(const Model& model, State& state, const Data& data) {
     const int c = dofs.slot[k] / 6, i = dofs.slot[k] % 6;
     const DofModel& dof = model.carriages[c].dofs[i];
     const FrictionTerms& f = data.friction[c];
-    // the restraint acts on the tibial AP and IE alone (its AP-IE coupling is left explicit)
+    sys.friction[k] = f.force[i];
+    sys.secant[k] = f.secant[i];
+    sys.capacity[k] = f.capacity[i];
+    if (!dof.implicit) {
+      // a heavy DOF: central difference as in the partitioned step (its row stands alone),
+      // friction at the new rate capped
+      sys.a[k] = dof.mass / dt;
+      sys.b[k] = data.generalized[c][i] - f.force[i] - dof.damping * v[k];
+      continue;
+    }
+    // a light DOF: implicit in the contact's stiffness to every moved DOF (the heavy ones at
+    // their new rates), the restraint on the tibial AP and IE (its AP-IE coupling left
+    // explicit), the dampers at the new rate, its friction moved by the others' rates
     const double k_restraint = c == 1 ? data.restraint_stiffness[i] : 0.0;
     const double* row = &K[12 * dofs.slot[k]];
     double k_v = k_restraint * v[k];
     for (int l = 0; l < dofs.n; ++l) k_v += row[dofs.slot[l]] * v[l];
     sys.a[k] = dof.mass / dt + dof.damping + (beta + dt) * row[dofs.slot[k]] + dt * k_restraint;
     sys.b[k] = data.generalized[c][i] - f.force[i] - dof.damping * v[k] - dt * k_v;
-    sys.friction[k] = f.force[i];
-    sys.secant[k] = f.secant[i];
-    sys.capacity[k] = f.capacity[i];
     for (int l = 0; l < dofs.n; ++l) {
       if (l != k) {
         sys.off[12 * k + l] = (beta + dt) * row[dofs.slot[l]];

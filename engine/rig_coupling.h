@@ -12,21 +12,22 @@
 // symmetric estimate sum k (n.J)^2 leaves out that the penetration grows along the femoral
 // surface's normal, not the insert's (tibial AP at heel strike: 28 000 against 49 000 N/m).
 //
-// What: every moved DOF of both carriages is updated together, linearly implicit in the
-// contact's tangent stiffness K_ij = sum_e k_e (n_e . J_i)(m_e . J_j) (n_e the insert's normal
-// along which the force acts, m_e minus the femur's outward normal along which the
-// penetration grows, J the point's velocity per unit DOF rate, + femur, - tibia; not
-// symmetric where the surfaces do not conform) and the restraint: the elastic force at
-// x(n+1) = x(n) + dt u, the contact damper beta K at the new rate u. Friction stays the capped
-// implicit law of engine/implicit_friction.h per DOF, its secant line now also moved by the
-// other DOFs' rates through the same slip (C_ij = sum_e c_e J_i,t . J_j,t). The system
-//   (M/dt + D + (beta + dt) K) (u - v) = G - F - D v - dt K v + F(u)
-// is solved by Gauss-Seidel sweeps in DOF order (fixed order: the same bits for any thread
-// count; 10-60 sweeps on the shipped rigs), each row in closed form with its friction cap.
-// It is first order in the step for every DOF (the partitioned step keeps the heavy DOFs'
-// central difference), which on the materials_study rig puts the AP range 5 % low at the
-// default step where the partitioned step is 2.5 % low: neither is uniformly closer, hence
-// opt-in.
+// What: the light DOFs are solved together with the rest of the rig. Their rows are linearly
+// implicit in the contact's tangent stiffness to every moved DOF, K_ij = sum_e k_e (n_e . J_i)
+// (m_e . J_j) (n_e the insert's normal along which the force acts, m_e minus the femur's
+// outward normal along which the penetration grows, J the point's velocity per unit DOF rate,
+// + femur, - tibia; not symmetric where the surfaces do not conform), and in the restraint:
+// the elastic force at x(n+1) = x(n) + dt u, the contact damper beta K at the new rate u.
+// Their friction stays the capped implicit law of engine/implicit_friction.h, its secant line
+// also moved by the other DOFs' rates through the same slip (C_ij = sum_e c_e J_i,t . J_j,t).
+// The heavy DOFs (the femur's axial and VV, ML) keep their central-difference rows, so the
+// light rows see their new rates within the step:
+//   light:  (M/dt + D + (beta + dt) K) (u - v) = G - F - D v - dt K v + F(u)  (all columns)
+//   heavy:  M/dt (u - v) = G - F - D v + F(u)                                (own column)
+// solved by Gauss-Seidel sweeps in DOF order (fixed order: the same bits for any thread
+// count; a few sweeps), each row in closed form with its friction cap. Making the heavy rows
+// implicit too (tried) made every DOF first order in the step and put the materials_study
+// rig's AP range 5 % low at the default step with the JW AP range still 8 % low.
 #pragma once
 
 #include <array>

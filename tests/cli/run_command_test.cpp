@@ -92,8 +92,8 @@ TEST_CASE("kneesim run writes the complete result set") {
 TEST_CASE("kneesim run with the coupled rig step runs end to end and says so") {
   // solver.rig_coupling = "coupled" (engine/rig_coupling.h) on the built-in implant at 2 mm
   // edges; reference: the partitioned step's ranges on the same model. The two steps' errors
-  // differ by a few per cent on this rig (docs/validation.md, "Rig step": IE +0.8 and +4.2 %
-  // against CVODE at 1 mm edges; at 2 mm 12.76 against 13.48 deg), so 10 %: a check against
+  // differ by a few per cent on this rig (docs/validation.md, "Rig step": IE +0.8 and +2.3 %
+  // against CVODE at 1 mm edges), so 10 %: a check against
   // a wrong sign or frame in the coupled rows, not of accuracy (the validation case is that)
   TempDir tmp;
   const fs::path coupled = tmp.path / "coupled", partitioned = tmp.path / "partitioned";

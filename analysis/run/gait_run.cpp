@@ -135,7 +135,10 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
   std::optional<wear::WearAccumulator> wear_acc;
   const double last_cycle_start = (config.cycles - 1) * built.model.period;
   const std::function<void()> reset_observers = [&] {
-    if (solid) tracker.emplace(built.model);
+    if (solid) {
+      tracker.emplace(built.model);
+      tracker->from_rest = config.cycles == 1;
+    }
     if (fe_export) fe_export->clear();
     if (scene) scene->clear();
     wear_acc.emplace(wear::make_accumulator(built.model, law));

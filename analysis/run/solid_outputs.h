@@ -22,6 +22,9 @@ struct SolidCycleTracker {
   std::vector<double> internal;       // elastic + hourglass + plastic work [J]
   std::vector<double> normal_force_sum;  // per top contact node, sum of |normal force| over
                                          // the observed steps [N] (an impulse / dt)
+  // the observed cycle begins at t = 0 from rest (a one-cycle run): its first 1 % is the
+  // femur's settling onto the insert (engine/solid/energy_ratio.h)
+  bool from_rest = false;
   explicit SolidCycleTracker(const engine::Model& model);
   void observe(const engine::Data& data);
 };

@@ -277,10 +277,15 @@ TEST_CASE("kneesim run with the deformable insert writes the rigid outputs plus 
   for (const char* k : {"ap_rom_mm", "ie_rom_mm", "peak_pressure_MPa", "mean_contact_area_mm2",
                         "von_mises_max_surface_MPa", "von_mises_max_subsurface_MPa",
                         "plastic_strain_max_surface", "plastic_strain_max_subsurface",
-                        "kinetic_to_internal_max", "solid_elements", "solid_added_mass_kg"}) {
+                        "kinetic_to_internal_max", "kinetic_to_internal_max_after_settling",
+                        "settling_s", "solid_elements", "solid_added_mass_kg"}) {
     REQUIRE_MESSAGE(summary.contains(k), "summary.json lacks " << k);
     CHECK(summary[k].is_number());
   }
+  // one cycle from rest: its first 1 % is the settling (0.2 s period)
+  CHECK(summary["settling_s"].get<double>() == doctest::Approx(0.002).epsilon(0.02));
+  CHECK(summary["kinetic_to_internal_max_after_settling"].get<double>() <=
+        summary["kinetic_to_internal_max"].get<double>());
   CHECK(summary["peak_pressure_MPa"].get<double>() > 0.0);
   CHECK(summary["von_mises_max_subsurface_MPa"].get<double>() > 0.0);
   const std::string vtu = slurp(out / "insert_stress.vtu");

@@ -18,6 +18,7 @@
 #include "models/gait_assembly.h"
 #include "models/implant_check.h"
 #include "models/mesh_io.h"
+#include "models/smooth_refine.h"
 
 namespace kneesim::models {
 namespace {
@@ -98,6 +99,34 @@ void check_sdf_memory(const Config& c, const TriMesh& femur) {
   throw InputError(buf);
 }
 
+// the femoral mesh refined on a smooth surface until its median edge is at most
+// implant.mesh.femur_refine_mm (models/smooth_refine.h); refuses a refinement that would pass
+// kMaxRefinedTriangles, naming the finest target this mesh allows
+constexpr double kMaxRefinedTriangles = 4e6;
+
+TriMesh refine_femur(const Config& c, const TriMesh& femur) {
+  SmoothRefineOptions o;
+  o.levels = find_refine_levels(femur, c.femur_refine_mm * kMm);
+  const double triangles = static_cast<double>(femur.triangles.size()) * std::pow(4.0, o.levels);
+  if (triangles > kMaxRefinedTriangles) {
+    int allowed = o.levels;
+    while (allowed > 0 && femur.triangles.size() * std::pow(4.0, allowed) > kMaxRefinedTriangles) {
+      --allowed;
+    }
+    const double finest = c.femur_refine_mm * std::pow(2.0, o.levels - allowed);
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "%s: implant.mesh.femur_refine_mm = %g would refine %s's %zu triangles to "
+                  "%.3g; allowed: at most %.0f, i.e. implant.mesh.femur_refine_mm >= %.2g "
+                  "for this mesh (or 0: no refinement).",
+                  config_name(c).c_str(), c.femur_refine_mm,
+                  resolve_path(c, c.femur_mesh).string().c_str(), femur.triangles.size(),
+                  triangles, kMaxRefinedTriangles, finest);
+    throw InputError(buf);
+  }
+  return refine_smooth(femur, o);
+}
+
 Implant make_implant(const Config& c, double& base_y) {
   Implant imp;
   if (c.implant_kind == "generic") {
@@ -115,6 +144,7 @@ Implant make_implant(const Config& c, double& base_y) {
                                        c.femur_origin_mm[2]) * kMm;
     imp.femur = load_mesh(resolve_path(c, c.femur_mesh), o);
     check_implant_size(imp.femur, resolve_path(c, c.femur_mesh), c.mesh_units, "femur");
+    if (c.femur_refine_mm > 0.0) imp.femur = refine_femur(c, imp.femur);
     o.translation_m.setZero();
     o.require_closed = c.insert_closed;
     imp.insert = load_mesh(resolve_path(c, c.insert_mesh), o);
@@ -252,7 +282,7 @@ std::string make_geometry_key(const Config& c) {
                    c.insert_sagittal_radius_mm, c.insert_coronal_radius_mm,
                    c.insert_thickness_mm, c.insert_ap_depth_mm, c.insert_ml_width_mm,
                    c.insert_base_y_mm, c.articular_min_normal_y, c.sdf_spacing_mm,
-                   c.sdf_band_mm}) {
+                   c.sdf_band_mm, c.femur_refine_mm}) {
     add(v);
   }
   for (double v : c.mesh_rotation_deg) add(v);

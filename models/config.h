@@ -102,6 +102,8 @@ struct Config {
   double insert_base_y_mm = 0.0;         // insert base plane height, project frame
   double articular_min_normal_y = 0.35;  // insert faces steeper than this are not articular
   bool insert_closed = true;             // require a closed insert mesh
+  double femur_refine_mm = 0.0;          // smooth refinement of the femur to this median edge
+                                         // (models/smooth_refine.h); 0: the file's triangles
 
   // [material]
   MaterialConfig material;

@@ -85,6 +85,8 @@ Registry make_registry(Config& c) {
     "insert faces whose normal's y component is below this are not articular");
   r.flag("implant.mesh.insert_closed", c.insert_closed,
     "require a closed (watertight) insert mesh, needed for the volume loss");
+  r.number("implant.mesh.femur_refine_mm", c.femur_refine_mm, 0.0, 5.0,
+    "refine the femoral mesh on a smooth surface through its vertices until the median edge is at most this (0: the file's triangles; validation.md, DM implant)");
 
   r.text("material.name", c.material.name,
     "insert material: a library name (models/materials.toml) or a [materials.<name>] table");

@@ -101,6 +101,8 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
   const engine::Model& m = built.model;
   nlohmann::json j;
   j["implant"] = config.implant_kind;
+  j["femur_triangles"] = built.implant.femur.triangles.size();
+  if (config.femur_refine_mm > 0.0) j["femur_refine_mm"] = config.femur_refine_mm;
   j["rig_preset"] = config.rig_preset;
   j["material"] = built.material.name;
   j["contact_law"] = config.contact_law;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -122,6 +123,47 @@ TEST_CASE("kneesim run with the coupled rig step runs end to end and says so") {
   CHECK(bad.exit_code == 2);
   CHECK(bad.err.find("solver.rig_coupling") != std::string::npos);
   CHECK(bad.err.find("coupled") != std::string::npos);
+}
+
+TEST_CASE("kneesim run refines an imported femur on request, and refuses too fine a target") {
+  // the Grand Challenge JW meshes (skipped without $KNEESIM_DATA): implant.mesh.femur_refine_mm
+  // (models/smooth_refine.h) runs end to end, and each level quarters the femur's triangles
+  const char* data = std::getenv("KNEESIM_DATA");
+  const char* source = std::getenv("KNEESIM_SOURCE_DIR");
+  if (data == nullptr || source == nullptr ||
+      !fs::exists(fs::path(data) / "gc4_jw/femoral_component.stl")) {
+    MESSAGE("skipped: the JW meshes are not in $KNEESIM_DATA");
+    return;
+  }
+  const std::string config = (fs::path(source) / "models/examples/jw_stanmore.toml").string();
+  TempDir tmp;
+  const fs::path plain = tmp.path / "plain", refined = tmp.path / "refined";
+  const Result a = run_kneesim({"run", config, "--out", plain.string(), "--no-plots", "--quiet",
+                                "--cycles", "1"},
+                               tmp.path);
+  REQUIRE(a.exit_code == 0);
+  // a target just under the median edge (0.44 mm): one level
+  const Result b = run_kneesim({"run", config, "--out", refined.string(), "--no-plots", "--quiet",
+                                "--cycles", "1", "--set", "implant.mesh.femur_refine_mm=0.4"},
+                               tmp.path);
+  INFO("stderr: " << b.err);
+  REQUIRE(b.exit_code == 0);
+  const auto sa = nlohmann::json::parse(slurp(plain / "summary.json"));
+  const auto sb = nlohmann::json::parse(slurp(refined / "summary.json"));
+  const auto ta = sa["femur_triangles"].get<long>(), tb = sb["femur_triangles"].get<long>();
+  CHECK(tb == 4 * ta);
+  CHECK(sb["femur_refine_mm"] == 0.4);
+  CHECK(sb["status"] == "complete");
+  // the refined femur is the same implant: the pressures move by a few per cent, not more
+  CHECK(sb["peak_pressure_MPa"].get<double>() ==
+        doctest::Approx(sa["peak_pressure_MPa"].get<double>()).epsilon(0.25));
+  // too fine for the allowed size: one sentence naming the key and the finest allowed target
+  const Result bad = run_kneesim({"run", config, "--out", (tmp.path / "bad").string(),
+                                  "--set", "implant.mesh.femur_refine_mm=0.001"},
+                                 tmp.path);
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.err.find("implant.mesh.femur_refine_mm") != std::string::npos);
+  CHECK(bad.err.find(">=") != std::string::npos);
 }
 
 TEST_CASE("the first row of kinematics.csv is the 0 % row") {

@@ -400,7 +400,7 @@ struct ContactReduction {
       const Eigen::Vector3d m_W =
           norm > 0.0 ? Eigen::Vector3d(-(X_FW.linear().transpose() * grad_F) / norm) : t.n_W;
       add_contact_coupling(coupled_dofs, t.ke, t.ce, t.c_W, t.n_W, m_W, axes, pivots, coupling,
-                           friction_coupling);
+                           &friction_coupling);
     }
     force += t.force_W;
     moment_O += t.c_W.cross(t.force_W);

@@ -156,7 +156,7 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
       model.coupled_rig_step ? find_coupled_dofs(model) : CoupledDofs{};
   const std::array<Eigen::Vector3d, 2> pivots{state.carriages[0].pivot_W,
                                               state.carriages[1].pivot_W};
-  std::array<double, 144> coupling{}, no_friction{};
+  std::array<double, 144> coupling{};
   out.total_force.setZero();
   out.peak_pressure = 0.0;
   out.area = 0.0;
@@ -206,7 +206,7 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
       // friction is on the nodes (data.friction is zero), not in the rig's rows; the node's
       // contact normal stands for both surfaces'
       add_contact_coupling(coupled_dofs, k, 0.0, p_W, n_W, n_W, data.axes, pivots, coupling,
-                           no_friction);
+                           nullptr);
     }
   }
   if (model.coupled_rig_step) {

@@ -114,8 +114,8 @@ struct Model {
   double dt_critical = 1e-4;               // estimated stability limit [s]
   IntegratorKind integrator = IntegratorKind::kCentralDifference;
   int threads = 1;                         // OpenMP threads in contact evaluation
-  // every moved rig DOF implicit in the contact's coupled stiffness (engine/rig_coupling.h);
-  // false: the light AP and IE DOFs implicit alone, the rest central difference
+  // the light AP and IE DOFs implicit in the contact's stiffness to every moved DOF, the heavy
+  // ones central difference (engine/rig_coupling.h); false: the light DOFs implicit alone
   bool coupled_rig_step = false;
 
   const CarriageModel& femur() const { return carriages[0]; }

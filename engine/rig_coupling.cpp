@@ -26,7 +26,7 @@ void add_contact_coupling(const CoupledDofs& dofs, double ke, double ce,
                           const Eigen::Vector3d& m_W,
                           const std::array<std::array<Eigen::Vector3d, 3>, 2>& axes,
                           const std::array<Eigen::Vector3d, 2>& pivots,
-                          std::array<double, 144>& K, std::array<double, 144>& C) {
+                          std::array<double, 144>& K, std::array<double, 144>* C) {
   // g: the point's motion along n_W per unit DOF rate, h: along m_W; the femur's and the
   // tibia's enter with opposite signs (the gap closes when they move towards each other)
   std::array<double, 12> g{}, h{};
@@ -45,9 +45,9 @@ void add_contact_coupling(const CoupledDofs& dofs, double ke, double ce,
     h[k] = m_W.dot(J);
     tangential[k] = J - g[k] * n_W;
   }
-  if (ce > 0.0) {
+  if (C != nullptr && ce > 0.0) {
     for (int k = 0; k < dofs.n; ++k) {
-      double* row = &C[12 * dofs.slot[k]];
+      double* row = &(*C)[12 * dofs.slot[k]];
       for (int l = 0; l < dofs.n; ++l) row[dofs.slot[l]] += ce * tangential[k].dot(tangential[l]);
     }
   }

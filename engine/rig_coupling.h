@@ -56,15 +56,15 @@ CoupledDofs find_coupled_dofs(const Model& model);
 // outward normal; n_W where the two surfaces conform; the two differ where they do not, and
 // then K is not symmetric); J: the point's velocity per unit DOF rate, + femur, - tibia.
 // axes: each carriage's gimbal axes, pivots: each carriage's pivot [m]
-// With a friction slope ce [N s/m] (the regularized friction's secant, engine/contact.cpp) it
-// also adds ce (J_i,t . J_j,t) to C, J_t the tangential part (normal n_W removed): how one
-// DOF's rate changes the friction on another (the same slip).
+// With C and a friction slope ce [N s/m] (the regularized friction's secant,
+// engine/contact.cpp) it also adds ce (J_i,t . J_j,t) to *C, J_t the tangential part (normal
+// n_W removed): how one DOF's rate changes the friction on another (the same slip).
 void add_contact_coupling(const CoupledDofs& dofs, double ke, double ce,
                           const Eigen::Vector3d& c_W, const Eigen::Vector3d& n_W,
                           const Eigen::Vector3d& m_W,
                           const std::array<std::array<Eigen::Vector3d, 3>, 2>& axes,
                           const std::array<Eigen::Vector3d, 2>& pivots,
-                          std::array<double, 144>& K, std::array<double, 144>& C);
+                          std::array<double, 144>& K, std::array<double, 144>* C);
 
 // one row of the coupled system per moved DOF: a (u - v) + sum_l off[l] (u_l - v_l) =
 // b + F(u), F capped (implicit_friction.h)
@@ -83,7 +83,8 @@ struct CoupledSystem {
 int solve_coupled_system(const CoupledSystem& sys, std::array<double, 12>& x,
                          double tol = 1e-12, int max_sweeps = 500);
 
-// the new rates of every moved DOF into state (the positions are advanced by the caller)
+// the new rates of every moved DOF into state: the light ones coupled, the heavy ones by
+// central difference (the positions are advanced by the caller)
 void update_coupled_rates(const Model& model, State& state, const Data& data);
 
 }  // namespace kneesim::engine

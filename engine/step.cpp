@@ -244,8 +244,8 @@ StepStatus step(const Model& model, State& state, Data& data) {
   if (solid && data.insert_solid.status != solid::SolidStatus::kOk) {
     return StepStatus::kInvertedElement;
   }
-  // rates v(n + 1/2): each carriage's own (light AP and IE implicit, the rest central
-  // difference), or every moved DOF together in the coupled contact stiffness; then x(n + 1),
+  // rates v(n + 1/2): light AP and IE implicit, the rest central difference; the light DOFs
+  // each alone, or coupled to every moved DOF through the contact's stiffness; then x(n + 1),
   // R(n + 1) on SO(3)
   if (model.coupled_rig_step) update_coupled_rates(model, state, data);
   for (int c = 0; c < 2; ++c) integrate_carriage(model, c, state, data);

@@ -290,8 +290,8 @@ Registry make_registry(Config& c) {
   r.choice("solver.integrator", c.integrator, {"central_difference", "cvode"},
     "explicit central difference, or SUNDIALS CVODE as a reference");
   r.choice("solver.rig_coupling", c.rig_coupling, {"partitioned", "coupled"},
-    "central difference: the light AP/IE DOFs implicit alone, or every moved DOF implicit in "
-    "the contact's coupled stiffness (validation.md, Rig step)");
+    "central difference: the light AP/IE DOFs implicit alone, or implicit in the contact's "
+    "stiffness to every moved DOF (validation.md, Rig step)");
   r.number("solver.dt_safety", c.dt_safety, 0.05, 1.0,
     "time step as a fraction of the estimated stability limit");
   r.integer("solver.threads", c.threads, 0, 256,

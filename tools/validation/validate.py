@@ -61,14 +61,17 @@ class Context:
         self.data = os.environ.get("KNEESIM_DATA", os.path.join(SOURCE, "..", "shared", "data"))
 
     # --- running -------------------------------------------------------------------------
-    def kneesim(self, name, args, out=True):
+    def kneesim(self, name, args, out=True, record=None):
         """Runs `build/tools/kneesim ARGS [--out DIR/NAME]` and returns the output folder.
-        The command is recorded (without --out) for the table's footer and the JSON."""
+        The command is recorded (without --out) for the table's footer and the JSON; `record`
+        (the arguments to show instead) for a run that reuses an earlier result of the same
+        command, so that the footer does not depend on what the build folder already holds."""
         folder = os.path.join(self.dir, name)
         cmd = [os.path.join(self.build, "tools", "kneesim")] + list(args)
         if out:
             cmd += ["--out", folder]
-        self._record(("kneesim " + " ".join(shlex.quote(a) for a in args)).replace(SOURCE + "/", ""))
+        shown = args if record is None else record
+        self._record(("kneesim " + " ".join(shlex.quote(a) for a in shown)).replace(SOURCE + "/", ""))
         self._call(cmd, name)
         return folder
 

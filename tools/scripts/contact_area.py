@@ -98,13 +98,11 @@ def main():
         gap[corners] = femur_heights(V, T[keep], x[corners]) - x[corners, 1]
         area_line = 0.0
         for q in q_slots[near]:
-            g = gap[q]
-            if np.isnan(g).any():
-                # a corner with no femur above it: outside the femur's footprint, open
-                g = np.where(np.isnan(g), np.inf, g)
+            # a corner with no femur above it is outside the femur's footprint: wide open
+            g = np.nan_to_num(gap[q], nan=1e3)
             if (g > 0).all():
                 continue
-            gi = sum(w * gc for w, gc in zip(weights, np.where(np.isinf(g), 1e3, g)))
+            gi = sum(w * gc for w, gc in zip(weights, g))
             area_line += quad_area_xz(x[q]) * float((gi < 0.0).mean())
         print("%6.1f   %16d   %17.2f   %24.2f   %.2f / %.2f" % (
             inst["gait_pct"], int(touching.sum()), area_nodes, area_line,

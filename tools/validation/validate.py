@@ -18,6 +18,7 @@ stated relative tolerance. Text outside the numbers must equal the template.
 """
 import argparse
 import datetime
+import hashlib
 import importlib.util
 import json
 import math
@@ -308,6 +309,7 @@ def run_case(mod, args):
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "seconds": round(time.time() - t0, 1),
         "build": os.path.relpath(args.build, SOURCE) if args.build.startswith(SOURCE) else args.build,
+        "kneesim_sha256": binary_id(args.build),
         "commands": v.commands,
         "figures": v.figures,
     }
@@ -318,6 +320,37 @@ def run_case(mod, args):
         f.write("\n")
     os.replace(tmp, path)
     return result
+
+
+def binary_id(build):
+    """The first 16 hex digits of the SHA-256 of build/tools/kneesim: which binary made a case's
+    figures, so that cases run on different days can be shown to come from one build."""
+    path = os.path.join(build, "tools", "kneesim")
+    if not os.path.exists(path):
+        return None
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()[:16]
+
+
+def list_cases(names, build):
+    """One line per case: name, quick/long, title, and the last run's time and date from
+    build/validation/<case>.json, marked when it was not made by the current build/tools/kneesim."""
+    current = binary_id(build)
+    for n in names:
+        mod = load_case(n)
+        line = f"{n:30s} {'long ' if mod.LONG else 'quick'}  {getattr(mod, 'TITLE', '')}"
+        path = os.path.join(build, "validation", n + ".json")
+        if os.path.exists(path):
+            with open(path) as f:
+                last = json.load(f)
+            made_by = last.get("kneesim_sha256")
+            note = ("" if made_by == current else
+                    " (binary not recorded)" if made_by is None else " (other binary)")
+            line += f"  [last run {last.get('seconds', 0):.0f} s, {last.get('date', '?')}{note}]"
+        print(line)
 
 
 def load_result(mod, args):
@@ -376,7 +409,7 @@ def main():
                     help="do not run: use build/validation/<case>.json from an earlier run")
     ap.add_argument("--json-only", action="store_true",
                     help="run and write build/validation/<case>.json, but leave the docs alone")
-    ap.add_argument("--list", action="store_true", help="list the cases and exit")
+    ap.add_argument("--list", action="store_true", help="list the cases with their last run (time, date, whether by this build's kneesim) and exit")
     ap.add_argument("--build", default=os.path.join(SOURCE, "build"), help="build folder (default: build)")
     ap.add_argument("--quiet", action="store_true", help="print only results")
     args = ap.parse_args()
@@ -384,9 +417,7 @@ def main():
 
     names = all_case_names()
     if args.list:
-        for n in names:
-            mod = load_case(n)
-            print(f"{n:28s} {'long ' if mod.LONG else 'quick'}  {getattr(mod, 'TITLE', '')}")
+        list_cases(names, args.build)
         return 0
     if args.cases:
         mods = [load_case(n) for n in args.cases]

@@ -107,7 +107,7 @@ RunResult simulate_reference(const Model& model, State& state, Data& data,
     }
     fill_state(model, free, y, t, state);
     calc_forces(model, state, data);
-    if (f > total - frames) result.frames.push_back(make_frame(state, data));
+    if (f > total - frames) result.frames.push_back(make_frame(model, state, data));
     if (data.contact.max_penetration_ratio > model.contact.runaway_fraction) {
       result.status = StepStatus::kRunawayPenetration;
       result.failed_at = t;

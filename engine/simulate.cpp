@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/contact_line.h"
 #include "engine/reference_integrator.h"
 
 namespace kneesim::engine {
 
-Frame make_frame(const State& state, const Data& data) {
+Frame make_frame(const Model& model, const State& state, const Data& data) {
   Frame f;
   f.gait_pct = data.gait_pct;
   f.time = state.time;
@@ -16,6 +17,7 @@ Frame make_frame(const State& state, const Data& data) {
   f.applied = data.applied;
   f.restraint = data.restraint_force;
   f.contact = data.contact;
+  f.contact_line_area = calc_contact_line_area(model, data);
   return f;
 }
 
@@ -43,7 +45,7 @@ RunResult simulate(const Model& model, State& state, Data& data, const RunOption
     if (t >= last_start - 0.5 * model.dt) {
       const double local = t - last_start;
       if (next_frame < options.frames_per_cycle && local >= next_frame * frame_dt - 0.5 * model.dt) {
-        result.frames.push_back(make_frame(state, data));
+        result.frames.push_back(make_frame(model, state, data));
         result.frames.back().time = t;
         result.frames.back().gait_pct = std::max(0.0, 100.0 * local / model.period);
         ++next_frame;

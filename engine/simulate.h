@@ -22,6 +22,9 @@ struct Frame {
   std::array<std::array<double, kNumDof>, 2> applied{}; // waveform loads [N or N m]
   Eigen::Vector3d restraint = Eigen::Vector3d::Zero();  // AP force [N], IE torque [N m]
   ContactSummary contact;
+  // area inside the contact line per condyle [m^2] (engine/contact_line.h), beside
+  // contact.area's elements (nodes) with a positive pressure
+  std::array<double, 2> contact_line_area{};
 };
 
 struct RunOptions {
@@ -46,7 +49,9 @@ struct RunResult {
   int step_retries = 0;               // runs repeated with a shorter step (simulate_with_retry)
 };
 
-Frame make_frame(const State& state, const Data& data);
+// the frame of the step just taken (data describes its start), with the area inside the
+// contact line (evaluated here: outputs only)
+Frame make_frame(const Model& model, const State& state, const Data& data);
 
 RunResult simulate(const Model& model, State& state, Data& data, const RunOptions& options);
 

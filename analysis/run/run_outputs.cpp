@@ -25,9 +25,13 @@ io::Table make_kinematics_table(const std::vector<engine::Frame>& frames) {
                "contact_area_mm2",  "medial_area_mm2",  "lateral_area_mm2",
                "peak_pressure_MPa", "mean_pressure_MPa", "medial_cop_ap_mm",
                "medial_cop_ml_mm",  "lateral_cop_ap_mm", "lateral_cop_ml_mm",
-               "restraint_force_N", "restraint_torque_Nm", "max_penetration_mm"};
+               "restraint_force_N", "restraint_torque_Nm", "max_penetration_mm",
+               "contact_line_area_mm2", "medial_line_area_mm2", "lateral_line_area_mm2",
+               "mean_pressure_line_MPa"};
   for (const engine::Frame& f : frames) {
     const auto& c = f.contact;
+    const double line_area = f.contact_line_area[0] + f.contact_line_area[1];
+    const double normal_force = c.normal_force[0] + c.normal_force[1];
     t.add_row({f.gait_pct,
                f.time,
                f.joint.flexion * kRadToDeg,
@@ -54,7 +58,11 @@ io::Table make_kinematics_table(const std::vector<engine::Frame>& frames) {
                c.cop_T[1].z() * 1e3,
                f.restraint.x(),
                f.restraint.y(),
-               c.max_penetration * 1e3});
+               c.max_penetration * 1e3,
+               line_area * 1e6,
+               f.contact_line_area[0] * 1e6,
+               f.contact_line_area[1] * 1e6,
+               line_area > 0.0 ? normal_force / line_area * 1e-6 : 0.0});
   }
   return t;
 }
@@ -63,7 +71,7 @@ CycleFigures calc_cycle_figures(const std::vector<engine::Frame>& frames) {
   CycleFigures fig;
   if (frames.empty()) return fig;
   double ap_lo = 1e9, ap_hi = -1e9, ie_lo = 1e9, ie_hi = -1e9;
-  double peak_sum = 0.0, area_sum = 0.0, med = 0.0, lat = 0.0;
+  double peak_sum = 0.0, area_sum = 0.0, line_area_sum = 0.0, med = 0.0, lat = 0.0;
   int in_contact = 0;
   for (const engine::Frame& f : frames) {
     const double ap = f.joint.ap * 1e3, ie = f.joint.ie * kRadToDeg;
@@ -77,6 +85,7 @@ CycleFigures calc_cycle_figures(const std::vector<engine::Frame>& frames) {
     if (f.contact.elements_in_contact > 0) {
       peak_sum += p;
       area_sum += (f.contact.area[0] + f.contact.area[1]) * 1e6;
+      line_area_sum += (f.contact_line_area[0] + f.contact_line_area[1]) * 1e6;
       ++in_contact;
     }
     const double load = -f.applied[0][1];
@@ -93,6 +102,7 @@ CycleFigures calc_cycle_figures(const std::vector<engine::Frame>& frames) {
   fig.ie_rom_deg = ie_hi - ie_lo;
   fig.mean_peak_pressure_MPa = in_contact ? peak_sum / in_contact : 0.0;
   fig.mean_contact_area_mm2 = in_contact ? area_sum / in_contact : 0.0;
+  fig.mean_contact_line_area_mm2 = in_contact ? line_area_sum / in_contact : 0.0;
   fig.medial_fraction_stance = med + lat > 0 ? med / (med + lat) : 0.0;
   return fig;
 }
@@ -196,6 +206,7 @@ nlohmann::json describe_figures(const CycleFigures& f) {
   j["contact_axial_force_at_peak_load_N"] = f.contact_force_at_peak_load_N;
   j["medial_fraction_stance"] = f.medial_fraction_stance;
   j["mean_contact_area_mm2"] = f.mean_contact_area_mm2;
+  j["mean_contact_line_area_mm2"] = f.mean_contact_line_area_mm2;
   return j;
 }
 

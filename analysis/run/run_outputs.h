@@ -25,7 +25,8 @@ struct CycleFigures {
   double peak_axial_load_N = 0.0;           // applied
   double contact_force_at_peak_load_N = 0.0;  // contact force (axial part) at that frame
   double medial_fraction_stance = 0.0;      // medial / (medial + lateral), mean over 0-60 %
-  double mean_contact_area_mm2 = 0.0;
+  double mean_contact_area_mm2 = 0.0;       // elements (nodes) with p > 0, mean in contact
+  double mean_contact_line_area_mm2 = 0.0;  // inside the contact line, mean in contact
 };
 CycleFigures calc_cycle_figures(const std::vector<engine::Frame>& frames);
 

@@ -3,6 +3,10 @@ deformable gait cycle per mesh, the stance figures of its kinematics.csv, the ch
 successive refinements and the table rows."""
 
 FIGS = ("peak", "stance_peak", "stance_mean", "area")
+# the same stance figures measured inside the contact line (kinematics.csv's line columns):
+# the area inside the line interpolated from the nodes' femoral distance, and the normal force
+# over it (docs/theory.md, "Deformable insert")
+LINE_FIGS = ("line_mean", "line_area")
 
 UNIFORM_2MM = ["--set", "deformable.element_size_mm=2"]
 
@@ -19,10 +23,14 @@ def refined(h, layers="6", grading="0.15"):
 
 def stance(rows):
     st = [r for r in rows if r["gait_pct"] <= 60.0 and r["contact_area_mm2"] > 0]
-    return {"peak": max(r["peak_pressure_MPa"] for r in st),
-            "stance_peak": sum(r["peak_pressure_MPa"] for r in st) / len(st),
-            "stance_mean": sum(r["mean_pressure_MPa"] for r in st) / len(st),
-            "area": sum(r["contact_area_mm2"] for r in st) / len(st)}
+    f = {"peak": max(r["peak_pressure_MPa"] for r in st),
+         "stance_peak": sum(r["peak_pressure_MPa"] for r in st) / len(st),
+         "stance_mean": sum(r["mean_pressure_MPa"] for r in st) / len(st),
+         "area": sum(r["contact_area_mm2"] for r in st) / len(st)}
+    if "contact_line_area_mm2" in st[0]:
+        f["line_mean"] = sum(r["mean_pressure_line_MPa"] for r in st) / len(st)
+        f["line_area"] = sum(r["contact_line_area_mm2"] for r in st) / len(st)
+    return f
 
 
 def one(v, name, material, extra, config=()):
@@ -48,11 +56,28 @@ def sequence(v, m, material, meshes, config=(), changes_from=2):
             v.figure(f"{m}_{key}_{k}", val)
     for i in range(max(changes_from, 1), len(runs)):
         (k0, f0), (k1, f1) = runs[i - 1], runs[i]
-        for k in FIGS:
-            v.figure(f"{m}_{k1}_{k}_chg", 100 * (f1[k] / f0[k] - 1), "%")
+        for k in FIGS + LINE_FIGS:
+            if k in f0 and k in f1:
+                v.figure(f"{m}_{k1}_{k}_chg", 100 * (f1[k] / f0[k] - 1), "%")
     v.figure(f"{m}_last_max_chg",
              max(abs(100 * (runs[-1][1][k] / runs[-2][1][k] - 1)) for k in FIGS), "%")
     return runs
+
+
+LINE_HEAD = ("| elements (surface size) | stance mean pressure, nodes' area (MPa) | inside the contact line (MPa) | "
+             "stance contact area, nodes (mm²) | inside the contact line (mm²) |\n"
+             "|---|---|---|---|---|\n")
+
+
+def line_table(m, labels, changes_from=2):
+    """The stance mean pressure and contact area by both measures, labels [(key, label)]."""
+    t = LINE_HEAD
+    for i, (key, label) in enumerate(labels):
+        c = i >= changes_from
+        cell = lambda k, d: (f"{{{m}_{key}_{k}:.{d}f}}" + (f" ({{{m}_{key}_{k}_chg:+.1f}} %)" if c else ""))
+        t += (f"| {{{m}_{key}_elements:.0f}} ({label}) | {cell('stance_mean', 2)} | {cell('line_mean', 2)} | "
+              f"{cell('area', 1)} | {cell('line_area', 1)} |\n")
+    return t
 
 
 HEAD = ("| elements (surface size) | peak pressure (MPa) | stance mean of the frame peak (MPa) | "

@@ -42,3 +42,7 @@ TABLE = (C.table("cf", "CFR-PEEK, surfaces at 0.25 mm facets and a 0.2 mm distan
            "{cf_coarse_r05_stance_mean:.2f} ({cf_coarse_r05_stance_mean_vs_fine:+.1f} %) | "
            "{cf_coarse_r05_area:.1f} ({cf_coarse_r05_area_vs_fine:+.1f} %) | {cf_coarse_r05_seconds:.0f} | "
            "{cf_coarse_r05_ke_pct:.2f} |\n")
+
+# the stance mean pressure and area by the nodes' area (the table above) and inside the contact
+# line (docs/theory.md, "Deformable insert")
+TABLES = {"line": "\n" + C.line_table("cf", [(key, label) for key, _, label in MESHES], changes_from=1)}

@@ -69,9 +69,10 @@ def run(v):
     v.figure("resid_mid_max_N", max(phase(20, 45)), "N")   # loading response and mid-stance
     v.figure("resid_hs_low_N", -min(phase(2, 6)), "N")     # just after heel strike
     v.figure("resid_po_low_N", -min(phase(63, 70)), "N")   # push-off
-    ratios = [abs(d["candidates"][0]["nuisance"]["gain_difference"]) / GAIN_DIFFERENCE_PRIOR_SD,
-              abs(d["candidates"][0]["nuisance"]["crosstalk_lateral_to_medial"]) / CROSSTALK_PRIOR_SD,
-              abs(d["candidates"][0]["nuisance"]["crosstalk_medial_to_lateral"]) / CROSSTALK_PRIOR_SD]
+    cal = d["candidates"][0]["nuisance"]  # the calibration terms fitted to `none`
+    ratios = [abs(cal["gain_difference"]) / GAIN_DIFFERENCE_PRIOR_SD,
+              abs(cal["crosstalk_lateral_to_medial"]) / CROSSTALK_PRIOR_SD,
+              abs(cal["crosstalk_medial_to_lateral"]) / CROSSTALK_PRIOR_SD]
     v.figure("calibration_prior_ratio_min", min(ratios))
     v.figure("calibration_prior_ratio_max", max(ratios))
     # the same diagnosis under independent residuals (what the error model changes)

@@ -384,6 +384,8 @@ engine::InsertSurface make_worn_insert_surface(const BuiltModel& pristine, const
 
 BuiltModel build_model(const Config& c, const BuiltModel* same_geometry) {
   if (c.contact_law_resolution.needs_calibration && c.insert_kind != "deformable") {
+    // meshes the rig cannot use are refused as themselves first (the more basic error)
+    load_implant(c);
     // the law as specified would inflate the pressures silently (models/contact_law_library.h)
     throw InputError(
         (c.file.empty() ? std::string("config") : c.file.string()) +

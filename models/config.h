@@ -129,10 +129,11 @@ struct Config {
   // contact_law and contact_foundation_modulus_MPa; "" for the law as specified
   std::string contact_law_file;
   double contact_foundation_modulus_MPa = 0.0;  // > 0 replaces the material's K [MPa]
-  // "auto": the law calibrated for the implant and material (shipped or cached), else the law
-  // as specified with a warning; "first_use": calibrated now when none is found; "off": the law
-  // as specified, with a warning (--no-calibrate)
-  std::string contact_calibration = "auto";
+  // "first_use": the law calibrated for the implant and material (shipped or cached), else
+  // calibrated now against the deformable insert and cached; "auto": the calibrated law when one
+  // is found, else the law as specified with a warning; "off": the law as specified, with a
+  // warning (--no-calibrate)
+  std::string contact_calibration = "first_use";
   ContactLawResolution contact_law_resolution;
 
   // [rig]

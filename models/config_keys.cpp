@@ -135,8 +135,8 @@ Registry make_registry(Config& c) {
     "friction coefficient replacing the material's (-1: the material's)");
   r.text("contact.law_file", c.contact_law_file,
     "a calibrated contact law (kneesim calibrate-contact) replacing contact.law and the foundation modulus");
-  r.choice("contact.calibration", c.contact_calibration, {"auto", "first_use", "off"},
-    "rigid insert: auto: the law calibrated against the deformable insert for the implant and material (shipped in models/contact_laws or cached), else the law as specified with a warning; first_use: calibrated now when none is found (one deformable cycle, cached); off: the law as specified, with a warning (--no-calibrate)");
+  r.choice("contact.calibration", c.contact_calibration, {"first_use", "auto", "off"},
+    "rigid insert: first_use: the law calibrated against the deformable insert for the implant and material (shipped in models/contact_laws or cached), else calibrated now (one deformable gait cycle on the reference mesh, minutes; cached); auto: the calibrated law when one is found, else the law as specified with a warning; off: the law as specified, with a warning (--no-calibrate)");
   r.number("contact.foundation_modulus_MPa", c.contact_foundation_modulus_MPa, 0.0, 1e6,
     "foundation modulus replacing K = (1-nu)E/((1+nu)(1-2nu)) (0: the calibrated law's K_eff, contact.calibration, or the material's K)");
 

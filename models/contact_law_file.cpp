@@ -134,7 +134,9 @@ std::string implant_identity(const Config& config) {
 
 void write_contact_law_file(const std::filesystem::path& file, const CalibratedContactLaw& law) {
   std::ostringstream s;
-  s.precision(10);
+  // 17 significant digits: the law read back is the same double as the one fitted, so the run
+  // that calibrates on first use and every later run that finds the cached file agree bit for bit
+  s.precision(17);
   s << "# written by kneesim calibrate-contact; found by its key (models/contact_law_library.h)\n"
     << "# or named by a config as contact.law_file\n"
     << "[calibrated_contact]\n"

@@ -8,6 +8,7 @@
 #include "analysis/diagnosis/text_format.h"
 #include "analysis/diagnosis/diagnosis_output.h"
 #include "analysis/diagnosis/report.h"
+#include "analysis/run/calibrate_contact_law.h"
 #include "engine/errors.h"
 #include "engine/io/json_out.h"
 #include "models/config.h"
@@ -100,8 +101,10 @@ ForcesDiagnosisReport run_forces_diagnosis(const ForcesDiagnosisOptions& o) {
   }
   std::vector<models::Override> overrides;
   for (const auto& s : o.sets) overrides.push_back(models::parse_override(s));
-  const models::Config config = models::load_config(o.config, overrides);
+  models::Config config = models::load_config(o.config, overrides);
   ForcesMeasured measured = read_forces_measured(config, o.measured);
+  // the contact law once the data are read (first use: calibrated now, a deformable cycle)
+  run::ensure_contact_law(config);
   auto sim = std::make_shared<ForcesSimulator>(config, measured.cycles);
   sim->set_threads(o.threads);
   const DiagnosisCase c = make_forces_case(measured, sim, o.case_options);

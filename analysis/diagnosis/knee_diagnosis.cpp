@@ -11,6 +11,7 @@
 #include "analysis/diagnosis/diagnosis_output.h"
 #include "analysis/diagnosis/kinematics_case.h"
 #include "analysis/diagnosis/knee_wear_case.h"
+#include "analysis/run/calibrate_contact_law.h"
 #include "engine/errors.h"
 #include "engine/io/json_out.h"
 #include "models/build_model.h"
@@ -185,6 +186,8 @@ KinematicsDiagnosisReport run_kinematics_diagnosis(const KinematicsDiagnosisOpti
   }
   auto data = read_kinematics_measured(o.measured,
                                                   femoral_reference_point(config));
+  // the contact law once the data are read (first use: calibrated now, a deformable cycle)
+  run::ensure_contact_law(config);
   auto sim = std::make_shared<KinematicsSimulator>(config);
   sim->set_threads(o.threads);
   KinematicsCaseOptions ko;

@@ -7,6 +7,7 @@
 
 #include "analysis/diagnosis/text_format.h"
 #include "analysis/diagnosis/measured_csv.h"
+#include "analysis/run/calibrate_contact_law.h"
 #include "engine/errors.h"
 
 namespace kneesim::diagnosis {
@@ -76,6 +77,9 @@ std::map<std::string, models::Config> knee_condition_configs(const MeasuredData&
     std::vector<models::Override> overrides = common;
     for (const auto& s : it->second) overrides.push_back(models::parse_override(s));
     out[m.group] = models::load_config(config_path, overrides);
+    // a condition that changes the implant or the material has a law of its own: calibrated on
+    // first use as every command's (contact.calibration; --no-calibrate keeps the law as specified)
+    run::ensure_contact_law(out[m.group]);
   }
   return out;
 }

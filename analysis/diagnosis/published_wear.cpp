@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "analysis/diagnosis/measured_csv.h"
+#include "analysis/run/calibrate_contact_law.h"
 #include "engine/errors.h"
 #include "engine/io/atomic_file.h"
 #include "engine/io/json_out.h"
@@ -193,6 +194,7 @@ nlohmann::json run_published_wear(const std::vector<PublishedStudy>& studies,
       std::vector<models::Override> ov = common;
       for (const auto& text : it->second) ov.push_back(models::parse_override(text));
       rows.push_back({&s, &c, models::load_config(s.config_path, ov)});
+      run::ensure_contact_law(rows.back().config);  // a condition's own law, on first use
     }
   }
   // the calibration condition

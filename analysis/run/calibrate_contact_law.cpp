@@ -17,6 +17,7 @@
 #include "engine/io/table.h"
 #include "models/contact_law_file.h"
 #include "models/contact_law_key.h"
+#include "models/build_model.h"
 #include "models/contact_law_library.h"
 
 namespace kneesim::run {
@@ -355,6 +356,9 @@ bool ensure_contact_law(models::Config& config, bool quiet) {
   if (!config.contact_law_resolution.needs_calibration || config.insert_kind == "deformable") {
     return false;
   }
+  // meshes the rig cannot use are refused as themselves, before the calibration's minutes (which
+  // would otherwise report them as a failed calibration)
+  models::load_implant(config);
   const std::string implant = models::implant_identity(config);
   const std::string what = "implant \"" + implant + "\", material \"" + config.material.name + "\"";
   if (!quiet) {
@@ -363,8 +367,9 @@ bool ensure_contact_law(models::Config& config, bool quiet) {
     }
     std::fprintf(stderr,
                  "kneesim: no calibrated contact law for %s: calibrating it against the "
-                 "deformable insert (first use: one deformable gait cycle and about 15 rigid "
-                 "ones; --no-calibrate runs the law as specified instead)\n",
+                 "deformable insert (first use: one deformable gait cycle on the reference mesh, "
+                 "minutes, and about 200 short rigid ones; cached; --no-calibrate runs the law "
+                 "as specified instead)\n",
                  what.c_str());
   }
   // scratch folder: in the cache folder when there is one, else the system's temporary folder

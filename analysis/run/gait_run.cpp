@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "analysis/report/run_report.h"
+#include "analysis/run/calibrate_contact_law.h"
 #include "analysis/run/fe_export.h"
 #include "analysis/run/solid_outputs.h"
 #include "engine/io/interrupt.h"
@@ -99,14 +100,17 @@ engine::RunResult simulate_gait(models::BuiltModel& built, const engine::RunOpti
 
 GaitRunReport run_gait_job(const GaitRunJob& job) {
   namespace fs = std::filesystem;
-  const models::Config& config = job.config;
   const fs::path& out = job.out;
   // the measured curve is read before the simulation: a bad file costs no run
-  const io::Table measured = read_measured_kinematics(config);
+  const io::Table measured = read_measured_kinematics(job.config);
   // a folder that cannot take the results, or a law the material has no coefficient for, is
-  // found before the model is built and the folder's old outputs are cleared
+  // found before the model is built (and before a contact law is calibrated on first use,
+  // which costs a deformable cycle) and the folder's old outputs are cleared
   io::check_output_folder(out);
-  wear::make_wear_law(config.wear, config.material, config.material.friction);
+  wear::make_wear_law(job.config.wear, job.config.material, job.config.material.friction);
+  models::Config config_with_law = job.config;
+  ensure_contact_law(config_with_law, job.quiet);
+  const models::Config& config = config_with_law;
   models::BuiltModel built = models::build_model(config);
   if (job.on_built) job.on_built(built);
   clear_outputs(out);

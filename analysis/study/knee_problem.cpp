@@ -30,7 +30,6 @@ std::string value_text(double v) {
 
 StudyProblem make_knee_problem(const KneeStudySetup& s) {
   models::Config base = run::load_run_config(s.config, s.sets);
-  run::ensure_contact_law(base, s.quiet);
   if (!s.measured.empty()) base.measured_kinematics = std::filesystem::absolute(s.measured).string();
   StudyProblem p;
   if (s.vars.empty()) {
@@ -74,6 +73,8 @@ StudyProblem make_knee_problem(const KneeStudySetup& s) {
   // a measured trace for the envelope plot, read (and checked) before any trial
   p.measured = run::read_measured_kinematics(base);
 
+  // the nominal law after every cheap check (first use: calibrated now, a deformable cycle)
+  run::ensure_contact_law(base, s.quiet);
   // the nominal model: built once, shared (const) by every trial for its geometry
   auto nominal = std::make_shared<const models::BuiltModel>(models::build_model(base));
   p.contact_law = run::describe_contact_law(base, nominal->model.contact.foundation_modulus * 1e-6);

@@ -145,7 +145,8 @@ TEST_CASE("a material table with a wear factor but no wear_factor_source is refu
             "wear_factor_mm3_per_Nmm = 1e-9\nwear_factor_source = \"my pin-on-plate test\"\n");
   const Result ok = run_kneesim({"wear", (tmp.path / "mine.toml").string(), "--cycles", "2",
                                  "--update-every", "1", "--quiet", "--no-plots", "--set",
-                                 "implant.edge_length_mm=3", "--out", (tmp.path / "w").string()},
+                                 "implant.edge_length_mm=3", "--no-calibrate", "--out",
+                                 (tmp.path / "w").string()},
                                 tmp.path);
   INFO("stderr: " << ok.err);
   CHECK(ok.exit_code == 0);

@@ -143,7 +143,8 @@ TEST_CASE("tables, gait file and user materials") {
   spit(tmp.path / "mat.toml", "[material]\nname = \"soft\"\n[materials.soft]\n"
                               "elastic_modulus_MPa = 500.0\n");
   const Result m = run_kneesim({"run", (tmp.path / "mat.toml").string(), "--cycles", "1", "--set",
-                                "implant.edge_length_mm=3", "--out", (tmp.path / "m").string(),
+                                "implant.edge_length_mm=3", "--no-calibrate", "--out",
+                                (tmp.path / "m").string(),
                                 "--quiet", "--no-plots", "--no-report"},
                                tmp.path, "mat");
   INFO(m.err);

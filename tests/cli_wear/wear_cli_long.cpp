@@ -15,9 +15,12 @@
 //    0.5 % (the enclosed volume of a receded curved surface is not linear in the depth);
 //  - `kneesim wear` killed before its first checkpoint, or after its last one (while the
 //    plots are drawn): --resume writes the same wear.csv, final_depth.csv and kinematics.csv
-//    as an uninterrupted run.
+//    as an uninterrupted run;
+//  - a material without a shipped contact law: `kneesim run` calibrates one on first use
+//    (a deformable cycle on the reference mesh, minutes), caches it, and the next run finds it.
 #include <doctest/doctest.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -172,4 +175,53 @@ TEST_CASE("kneesim wear killed after its last checkpoint: --resume gives the sam
   INFO("kinematics.csv rows: uninterrupted " << count_lines(kin1) << ", resumed "
                                              << count_lines(kin4));
   CHECK(same_bytes(kin4, kin1));
+}
+
+TEST_CASE("a material without a shipped law: calibrated on first use, cached, found by the next run") {
+  // contact.calibration = "first_use" (the default) end to end through `kneesim run`: a user
+  // material (700 MPa, the other constants UHMWPE's) has no law in models/contact_laws, so the
+  // first run calibrates one against the deformable insert (one cycle on the reference mesh,
+  // minutes) and caches it by its key; the second run finds it in the cache and, with the same
+  // law, reports bit-identical pressures; --no-calibrate runs the law as specified with its
+  // warning. Reference: the cache round trip (invariant), not a figure.
+  REQUIRE(!find_kneesim().empty());
+  TempDir tmp;
+  const fs::path cache = tmp.path / "cache";
+  const char* old = std::getenv("KNEESIM_CACHE_DIR");
+  const std::string saved = old ? old : "";
+  setenv("KNEESIM_CACHE_DIR", cache.c_str(), 1);
+  tmp.write("mine.toml", "[material]\nname = \"mine\"\n\n[materials.mine]\n"
+                         "elastic_modulus_MPa = 700.0\n");
+  auto run = [&](const std::string& out, std::vector<std::string> extra) {
+    std::vector<std::string> a = {"run", (tmp.path / "mine.toml").string(), "--cycles", "1",
+                                  "--no-plots", "--no-report", "--out", (tmp.path / out).string()};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return run_kneesim(a, tmp.path, out);
+  };
+  const Result first = run("first", {});
+  const Result second = run("second", {});
+  const Result off = run("off", {"--no-calibrate"});
+  if (old) setenv("KNEESIM_CACHE_DIR", saved.c_str(), 1); else unsetenv("KNEESIM_CACHE_DIR");
+  INFO("first run's stderr: " << first.err);
+  REQUIRE(first.exit_code == 0);
+  MESSAGE("kneesim run with a calibration on first use: " << first.seconds << " s wall, the "
+          "next run " << second.seconds << " s");
+  CHECK(first.err.find("calibrating it against the deformable insert") != std::string::npos);
+  const auto s1 = nlohmann::json::parse(slurp(tmp.path / "first" / "summary.json"));
+  const auto law1 = s1["contact_law_calibration"];
+  CHECK(law1["source"] == "calibrated");
+  CHECK(fs::exists(cache / "contact_laws"));
+  CHECK_FALSE(s1.contains("contact_law_warning"));
+  INFO("second run's stderr: " << second.err);
+  REQUIRE(second.exit_code == 0);
+  CHECK(second.err.find("calibrating") == std::string::npos);
+  const auto s2 = nlohmann::json::parse(slurp(tmp.path / "second" / "summary.json"));
+  CHECK(s2["contact_law_calibration"]["source"] == "cache");
+  CHECK(s2["contact_law_calibration"]["foundation_modulus_MPa"] == law1["foundation_modulus_MPa"]);
+  CHECK(s2["peak_pressure_MPa"] == s1["peak_pressure_MPa"]);
+  INFO("--no-calibrate's stderr: " << off.err);
+  REQUIRE(off.exit_code == 0);
+  const auto s3 = nlohmann::json::parse(slurp(tmp.path / "off" / "summary.json"));
+  CHECK(s3["contact_law_calibration"]["source"] == "specified");
+  CHECK(s3.contains("contact_law_warning"));
 }

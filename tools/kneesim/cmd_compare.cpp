@@ -63,11 +63,6 @@ void run(const CompareArgs& a) {
     o.push_back({"material.name", "\"" + m + "\""});
     run::WearJob job;
     job.config = models::load_config(a.config, o);
-    // each material's calibrated law (first use: calibrated now, before any wear run starts)
-    run::ensure_contact_law(job.config, a.quiet);
-    if (const std::string& w = job.config.contact_law_resolution.warning; !w.empty()) {
-      std::fprintf(stderr, "warning: %s: %s\n", m.c_str(), w.c_str());
-    }
     job.cycles = a.cycles;
     job.update_every = a.update_every;
     job.out = fs::path(a.out) / m;
@@ -89,6 +84,14 @@ void run(const CompareArgs& a) {
     job.identity_text = id.str();
     run::check_wear_job(job);
     jobs.push_back(std::move(job));
+  }
+  // each material's calibrated law once every material is checked (first use: calibrated now,
+  // before any wear run starts)
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    run::ensure_contact_law(jobs[i].config, a.quiet);
+    if (const std::string& w = jobs[i].config.contact_law_resolution.warning; !w.empty()) {
+      std::fprintf(stderr, "warning: %s: %s\n", a.materials[i].c_str(), w.c_str());
+    }
   }
   // the folder holds this comparison only: a previous one's table, plots and the result
   // folders of materials not run now go (a folder with anything but wear outputs stays)

@@ -45,7 +45,6 @@ void run_convergence(const WearArgs& a, const std::vector<models::Override>& ove
   for (long every : a.convergence) {
     run::WearJob job;
     job.config = models::load_config(a.config, overrides);
-    run::ensure_contact_law(job.config, a.quiet);
     job.cycles = a.cycles;
     job.update_every = every;
     job.interval_flag = "--convergence";
@@ -58,6 +57,8 @@ void run_convergence(const WearArgs& a, const std::vector<models::Override>& ove
     run::check_wear_job(job);
     jobs.push_back(std::move(job));
   }
+  // the contact law once every job is checked (first use: calibrated once, then found)
+  for (run::WearJob& job : jobs) run::ensure_contact_law(job.config, a.quiet);
   const std::vector<nlohmann::json> results = run::run_wear_jobs(jobs);
   // reference: the shortest interval
   size_t ref = 0;
@@ -98,11 +99,6 @@ void run(const WearArgs& a) {
   }
   run::WearJob job;
   job.config = models::load_config(a.config, overrides);
-  run::ensure_contact_law(job.config, a.quiet);
-  // the fallback warning once the model is built (a mesh refused while building is one line)
-  job.on_built = [w = job.config.contact_law_resolution.warning](const models::BuiltModel&) {
-    if (!w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  };
   job.cycles = a.cycles;
   job.update_every = a.update_every;
   job.schedule = a.schedule;
@@ -124,6 +120,12 @@ void run(const WearArgs& a) {
   for (long s : a.schedule) id << " " << s;
   job.identity_text = id.str();
   run::check_wear_job(job);
+  // the contact law after every cheap check (first use: calibrated now, a deformable cycle)
+  run::ensure_contact_law(job.config, a.quiet);
+  // the fallback warning once the model is built (a mesh refused while building is one line)
+  job.on_built = [w = job.config.contact_law_resolution.warning](const models::BuiltModel&) {
+    if (!w.empty()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  };
   const io::PlotSession plots;  // matplotlib loads on the other core while the wear runs
   const nlohmann::json s = run::run_wear_job(job);
   if (!a.quiet) {

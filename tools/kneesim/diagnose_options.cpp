@@ -76,8 +76,9 @@ diagnosis::DiagnosisOptions make_diagnosis_options(const DiagnoseCommonOptions& 
 void prepare_contact_law(const std::string& config, std::vector<std::string>& sets,
                          bool no_calibrate) {
   sets = with_no_calibrate(sets, no_calibrate);
-  models::Config c = run::load_run_config(config, sets);
-  run::ensure_contact_law(c);
+  // the law is resolved here for its warning; a calibration on first use runs in the diagnosis,
+  // once the measured data are read
+  const models::Config c = run::load_run_config(config, sets);
   if (const std::string& w = c.contact_law_resolution.warning; !w.empty()) {
     std::fprintf(stderr, "warning: %s\n", w.c_str());
   }

@@ -25,8 +25,10 @@ struct DiagnoseCommonOptions {
 void add_diagnose_common_options(CLI::App* cmd, DiagnoseCommonOptions& o);
 
 // the knee diagnoses' rigid contact law: with --no-calibrate, contact.calibration = "off" joins
-// `sets`; otherwise the config's law is found or calibrated now (first use), so every config the
-// diagnosis loads from the same implant and material finds it (InputError as load_config)
+// `sets`; the config's law is resolved and its fallback warning printed. A law missing under
+// contact.calibration = "first_use" is calibrated by the diagnosis once its measured data are
+// read (run::ensure_contact_law), and every config it loads from the same implant and material
+// then finds it (InputError as load_config)
 void prepare_contact_law(const std::string& config, std::vector<std::string>& sets,
                          bool no_calibrate);
 // validated DiagnosisOptions (InputError naming the option)

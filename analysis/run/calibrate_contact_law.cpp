@@ -44,9 +44,10 @@ std::string number(double v) {
 }
 
 
-// the deformable reference's mesh in words, for the provenance
-std::string describe_mesh(const models::Config& c) {
-  char buf[256];
+// the deformable reference's mesh in words, for the provenance; its surfaces when they are
+// finer than the rigid runs' (`rigid`)
+std::string describe_mesh(const models::Config& c, const models::Config& rigid) {
+  char buf[512];
   if (c.deformable_refine == "contact") {
     std::snprintf(buf, sizeof buf,
                   "%g mm where the cycle's contact occurs (margin %g mm), %g mm outside, "
@@ -57,7 +58,29 @@ std::string describe_mesh(const models::Config& c) {
     std::snprintf(buf, sizeof buf, "uniform %g mm, %d layers, grading %g",
                   c.deformable_element_size_mm, c.deformable_layers, c.deformable_grading);
   }
-  return buf;
+  std::string text = buf;
+  if (c.edge_length_mm != rigid.edge_length_mm || c.sdf_spacing_mm != rigid.sdf_spacing_mm) {
+    std::snprintf(buf, sizeof buf,
+                  "; surfaces %g mm facets, distance field %g mm (the rigid runs: %g mm, %g mm)",
+                  c.edge_length_mm, c.sdf_spacing_mm, rigid.edge_length_mm, rigid.sdf_spacing_mm);
+    text += buf;
+  }
+  return text;
+}
+
+// the deformable reference's config: the calibration's, on the job's surfaces
+models::Config reference_config(const models::Config& base, const ContactCalibrationJob& job) {
+  models::Config c = base;
+  if (job.reference_edge_length_mm > 0.0) {
+    if (base.implant_kind != "generic") {
+      throw InputError("--reference-edge-mm " + number(job.reference_edge_length_mm) +
+                       " sets the built-in implant's triangulation; the implant is \"" +
+                       base.implant_kind + "\" (imported meshes keep their own facets).");
+    }
+    c.edge_length_mm = job.reference_edge_length_mm;
+  }
+  if (job.reference_sdf_spacing_mm > 0.0) c.sdf_spacing_mm = job.reference_sdf_spacing_mm;
+  return c;
 }
 
 // a finished deformable run given with --deformable-from must be of the calibration's settings
@@ -87,6 +110,8 @@ void check_deformable_run(const std::filesystem::path& dir, const models::Config
   differs("deformable_layers", c.deformable_layers);
   differs("deformable_grading", c.deformable_grading);
   differs("deformable_refine", c.deformable_refine);
+  differs("sdf_spacing_mm", c.sdf_spacing_mm);
+  if (c.implant_kind == "generic") differs("implant_edge_length_mm", c.edge_length_mm);
 }
 
 }  // namespace
@@ -129,6 +154,7 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   }
   const models::Config base = models::make_calibration_config(job.config, /*own_reference=*/true);
   const models::ContactLawKey key = models::make_contact_law_key(base);
+  const models::Config reference = reference_config(base, job);
   const double k_spec_MPa =
       engine::foundation_modulus(base.material.elastic_modulus_MPa, base.material.poisson);
   io::check_output_folder(out);
@@ -139,7 +165,7 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   fs::path deformable_csv;
   if (job.deformable_from.empty()) {
     GaitRunJob run;
-    run.config = base;
+    run.config = reference;
     run.config.insert_kind = "deformable";
     run.config.cycles = 1;
     run.config.contact_law_resolution = {};
@@ -149,14 +175,14 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
     run.plots = job.plots;
     if (!job.quiet) {
       std::fprintf(stderr, "calibrate-contact: deformable insert (%s), 1 cycle\n",
-                   describe_mesh(base).c_str());
+                   describe_mesh(reference, base).c_str());
     }
     const GaitRunReport r = run_gait_job(run);
     deformable_seconds = r.seconds;
     deformable_elements = r.summary.value("solid_elements", 0);
     deformable_csv = run.out / "kinematics.csv";
   } else {
-    check_deformable_run(job.deformable_from, base);
+    check_deformable_run(job.deformable_from, reference);
     deformable_csv = job.deformable_from / "kinematics.csv";
     const auto s = nlohmann::json::parse(io::read_file(job.deformable_from / "summary.json"));
     deformable_seconds = s.value("seconds_per_cycle", 0.0);
@@ -259,7 +285,7 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   law.specified_modulus_MPa = k_spec_MPa;
   law.fitted_on = std::string(job.exponent > 0.0 ? "modulus (exponent fixed)" : "modulus and exponent") +
                   " on stance 0-30 % peak and mean pressure of the deformable insert (" +
-                  describe_mesh(base) + "), rig " + base.rig_preset;
+                  describe_mesh(reference, base) + "), rig " + base.rig_preset;
   char date[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
@@ -269,8 +295,9 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
        {"load_case", models::toml_quoted("rig " + base.rig_preset + ", gait " +
                             fs::path(base.gait_file).filename().string() +
                             "; rigid 2 cycles, deformable 1 cycle")},
-       {"deformable_mesh", models::toml_quoted(describe_mesh(base))},
+       {"deformable_mesh", models::toml_quoted(describe_mesh(reference, base))},
        {"deformable_elements", std::to_string(deformable_elements)},
+       {"reference_sdf_spacing_mm", number(reference.sdf_spacing_mm)},
        {"modulus_ratio", number(k_fit / k_spec_MPa)},
        {"search_range_MPa", models::toml_quoted(number(lo) + " to " + number(hi))},
        {"exponent_search", models::toml_quoted(job.exponent > 0.0 ? "fixed (--exponent)"
@@ -298,6 +325,9 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
        {"stance_area_mm2_calibrated", number(st_cal.area_mm2)},
        {"deformable_seconds_per_cycle", number(deformable_seconds)},
        {"rigid_seconds_per_cycle", number(calibrated_seconds)}};
+  if (reference.implant_kind == "generic") {
+    p.push_back({"reference_edge_length_mm", number(reference.edge_length_mm)});
+  }
   models::write_contact_law_file(out / "contact_law.toml", law);
 
   io::Table t;
@@ -326,7 +356,9 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   s["search_range_MPa"] = {lo, hi};
   s["fit_at_search_bound"] = false;
   s["fit_evaluations"] = evaluations;
-  s["deformable_mesh"] = describe_mesh(base);
+  s["deformable_mesh"] = describe_mesh(reference, base);
+  if (reference.implant_kind == "generic") s["reference_edge_length_mm"] = reference.edge_length_mm;
+  s["reference_sdf_spacing_mm"] = reference.sdf_spacing_mm;
   s["deformable_elements"] = deformable_elements;
   s["deformable_element_mm"] = base.deformable_element_size_mm;
   for (const auto& [name, lo_pct, hi_pct] :

@@ -5,7 +5,8 @@
 //
 // Procedure, under the reference load case of models::make_calibration_config (the config's
 // implant, material, contact.law and deformable reference mesh; everything else at its default, i.e.
-// the stanmore rig and the shipped gait): one deformable cycle (or a finished deformable run),
+// the stanmore rig and the shipped gait): one deformable cycle (or a finished deformable run;
+// optionally on finer surfaces than the rigid runs', ContactCalibrationJob::reference_*),
 // the rigid insert with the law as specified, and a nested golden-section search of the law
 // p = K_eff g^n (engine/contact_law.h): the exponent n over log n in [0.3, 1.5] outside, the
 // effective foundation modulus K_eff over log K in [0.01, 10] times modulus_search_reference inside, minimizing
@@ -32,6 +33,13 @@ struct ContactCalibrationJob {
   bool plots = true;                       // out/calibration.png
   bool quiet = false;                      // no progress lines on stderr
   double exponent = 0.0;                   // > 0: n fixed at this value, K_eff alone fitted
+  // the deformable reference's surfaces (0: the config's, as the rigid runs): the built-in
+  // implant's triangulation (implant.edge_length_mm) and the femur's distance-field spacing
+  // (contact.sdf_spacing_mm). A stiff insert's small patch follows the 1 mm facets' ridges
+  // (docs/validation.md, CFR-PEEK on finely faceted surfaces): its converged reference needs
+  // finer ones, while the rigid runs keep the surfaces a user's rigid run has
+  double reference_edge_length_mm = 0.0;
+  double reference_sdf_spacing_mm = 0.0;
 };
 
 struct ContactCalibrationReport {

@@ -160,6 +160,10 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
     meshes["left_knee"] = config.mesh_left_knee;
     j["implant_meshes"] = meshes;
   }
+  // the surfaces' resolution: the built-in implant's triangulation and the femur's distance
+  // field (a calibration's --deformable-from run must match them)
+  if (config.implant_kind == "generic") j["implant_edge_length_mm"] = config.edge_length_mm;
+  j["sdf_spacing_mm"] = config.sdf_spacing_mm;
   j["build_seconds"] = built.build_seconds;
   j["sdf_seconds"] = built.sdf_seconds;
   if (!m.insert_solid.empty()) {

@@ -56,3 +56,50 @@ TEST_CASE("kneesim calibrate-contact writes a law file that a config can name") 
   CHECK(other.err.find(law) != std::string::npos);
   CHECK(other.err.find("calibrated for material \"uhmwpe\"") != std::string::npos);
 }
+
+// the deformable reference on finer surfaces than the rigid runs' (--reference-edge-mm): the
+// provenance records them, and a --deformable-from run on other surfaces is refused by name
+TEST_CASE("kneesim calibrate-contact: the reference's surfaces are recorded and checked") {
+  TempDir tmp;
+  const std::vector<std::string> mesh = {
+      "--set", "deformable.element_size_mm=3", "--set", "deformable.layers=3",
+      "--set", "deformable.grading=0.15",      "--set", "deformable.refine=\"contact\"",
+      "--set", "gait.period_s=0.2",            "--set", "solver.threads=2"};
+  std::vector<std::string> run = {"run", "--quiet", "--no-plots", "--cycles", "1",
+                                  "--set", "insert=\"deformable\"", "--set",
+                                  "implant.edge_length_mm=1.5", "--out",
+                                  (tmp.path / "fine").string()};
+  run.insert(run.end(), mesh.begin(), mesh.end());
+  const Result made = run_kneesim(run, tmp.path);
+  INFO("stderr: " << made.err);
+  REQUIRE(made.exit_code == 0);
+  const auto made_summary = nlohmann::json::parse(slurp(tmp.path / "fine" / "summary.json"));
+  CHECK(made_summary["implant_edge_length_mm"].get<double>() == 1.5);
+  CHECK(made_summary["sdf_spacing_mm"].get<double>() == 0.4);
+
+  std::vector<std::string> cal = {"calibrate-contact", "--material", "uhmwpe", "--exponent", "1",
+                                  "--no-plots", "--quiet", "--element-mm", "3",
+                                  "--deformable-from", (tmp.path / "fine").string()};
+  cal.insert(cal.end(), mesh.begin(), mesh.end());
+  std::vector<std::string> good = cal;
+  good.insert(good.end(), {"--reference-edge-mm", "1.5", "--out", (tmp.path / "cal").string()});
+  const Result ok = run_kneesim(good, tmp.path);
+  INFO("stderr: " << ok.err);
+  REQUIRE(ok.exit_code == 0);
+  const auto s = nlohmann::json::parse(slurp(tmp.path / "cal" / "summary.json"));
+  CHECK(s["reference_edge_length_mm"].get<double>() == 1.5);
+  CHECK(s["deformable_mesh"].get<std::string>().find(
+            "surfaces 1.5 mm facets, distance field 0.4 mm (the rigid runs: 1 mm, 0.4 mm)") !=
+        std::string::npos);
+  const std::string law = slurp(tmp.path / "cal" / "contact_law.toml");
+  CHECK(law.find("reference_edge_length_mm = 1.5") != std::string::npos);
+  CHECK(law.find("--reference-edge-mm 1.5") != std::string::npos);
+
+  // the same run named without its surfaces: the rigid runs' 1 mm facets are not what it used
+  std::vector<std::string> bad = cal;
+  bad.insert(bad.end(), {"--out", (tmp.path / "cal2").string()});
+  const Result refused = run_kneesim(bad, tmp.path);
+  CHECK(refused.exit_code == 2);
+  CHECK(refused.err.find("implant_edge_length_mm = 1.5, the calibration needs 1.0") !=
+        std::string::npos);
+}

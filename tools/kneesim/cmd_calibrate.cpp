@@ -24,6 +24,8 @@ struct CalibrateArgs {
   std::string out = "kneesim-calibrate-contact";
   double element_mm = 0.0;
   double exponent = 0.0;
+  double reference_edge_mm = 0.0;
+  double reference_sdf_mm = 0.0;
   std::string deformable_from;
   bool quiet = false;
   bool no_plots = false;
@@ -51,6 +53,8 @@ void calibrate(const CalibrateArgs& a) {
   job.plots = !a.no_plots;
   job.quiet = a.quiet;
   job.exponent = a.exponent;
+  job.reference_edge_length_mm = a.reference_edge_mm;
+  job.reference_sdf_spacing_mm = a.reference_sdf_mm;
   const run::ContactCalibrationReport r = run::calibrate_contact_law(job);
   report::write_calibrate_report(a.out, r.law.material);
   const auto& held = r.summary["held_out_30_60pct"];
@@ -95,20 +99,42 @@ void add_calibrate_command(CLI::App& app) {
                   "fix the law's exponent n of p = K_eff g^n and fit the modulus alone (default: "
                   "n fitted with the modulus, over 0.3 to 1.5)")
       ->check(finite_range(0.2, 2.0));
+  cmd->add_option("--reference-edge-mm", args->reference_edge_mm,
+                  "triangulate the built-in implant at this edge length [mm] for the deformable "
+                  "reference only (default: implant.edge_length_mm, as the rigid runs); stiff "
+                  "inserts' small patches need 0.25 to converge")
+      ->check(finite_range(0.1, 5.0));
+  cmd->add_option("--reference-sdf-mm", args->reference_sdf_mm,
+                  "the femur's distance-field spacing [mm] for the deformable reference only "
+                  "(default: contact.sdf_spacing_mm, as the rigid runs)")
+      ->check(finite_range(0.05, 2.0));
   cmd->add_option("--deformable-from", args->deformable_from,
-                  "a finished deformable kneesim run of the same implant, material, rig and "
-                  "[deformable] settings to fit against instead of running one");
+                  "a finished deformable kneesim run of the same implant, material, rig, "
+                  "[deformable] settings and reference surfaces to fit against instead of "
+                  "running one");
   cmd->add_flag("--no-plots", args->no_plots, "skip DIR/calibration.png and the runs' plots");
   cmd->add_flag("--quiet", args->quiet, "no progress lines");
   cmd->callback([args] {
     io::check_output_folder(args->out);
     // the command as given, for the law's provenance
+    auto number = [](double v) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%g", v);
+      return std::string(buf);
+    };
     args->command = "kneesim calibrate-contact";
     if (!args->config.empty()) args->command += " " + args->config;
     if (!args->material.empty()) args->command += " --material " + args->material;
     for (const auto& s : args->sets) args->command += " --set " + s;
-    if (args->element_mm > 0.0) args->command += " --element-mm " + std::to_string(args->element_mm);
-    if (args->exponent > 0.0) args->command += " --exponent " + std::to_string(args->exponent);
+    if (args->element_mm > 0.0) args->command += " --element-mm " + number(args->element_mm);
+    if (args->exponent > 0.0) args->command += " --exponent " + number(args->exponent);
+    if (args->reference_edge_mm > 0.0) {
+      args->command += " --reference-edge-mm " + number(args->reference_edge_mm);
+    }
+    if (args->reference_sdf_mm > 0.0) {
+      args->command += " --reference-sdf-mm " + number(args->reference_sdf_mm);
+    }
+    if (!args->deformable_from.empty()) args->command += " --deformable-from " + args->deformable_from;
     calibrate(*args);
   });
 }

@@ -44,8 +44,8 @@ std::string number(double v) {
 }
 
 
-// the deformable reference's mesh in words, for the provenance; its surfaces when they are
-// finer than the rigid runs' (`rigid`)
+// the deformable reference's mesh in words, for the provenance; its surfaces when they differ
+// from the rigid runs' (`rigid`)
 std::string describe_mesh(const models::Config& c, const models::Config& rigid) {
   char buf[512];
   if (c.deformable_refine == "contact") {
@@ -155,6 +155,7 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   const models::Config base = models::make_calibration_config(job.config, /*own_reference=*/true);
   const models::ContactLawKey key = models::make_contact_law_key(base);
   const models::Config reference = reference_config(base, job);
+  const std::string reference_mesh = describe_mesh(reference, base);
   const double k_spec_MPa =
       engine::foundation_modulus(base.material.elastic_modulus_MPa, base.material.poisson);
   io::check_output_folder(out);
@@ -175,7 +176,7 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
     run.plots = job.plots;
     if (!job.quiet) {
       std::fprintf(stderr, "calibrate-contact: deformable insert (%s), 1 cycle\n",
-                   describe_mesh(reference, base).c_str());
+                   reference_mesh.c_str());
     }
     const GaitRunReport r = run_gait_job(run);
     deformable_seconds = r.seconds;
@@ -285,7 +286,7 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   law.specified_modulus_MPa = k_spec_MPa;
   law.fitted_on = std::string(job.exponent > 0.0 ? "modulus (exponent fixed)" : "modulus and exponent") +
                   " on stance 0-30 % peak and mean pressure of the deformable insert (" +
-                  describe_mesh(reference, base) + "), rig " + base.rig_preset;
+                  reference_mesh + "), rig " + base.rig_preset;
   char date[32];
   const std::time_t now = std::time(nullptr);
   std::strftime(date, sizeof date, "%Y-%m-%d", std::gmtime(&now));
@@ -295,7 +296,7 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
        {"load_case", models::toml_quoted("rig " + base.rig_preset + ", gait " +
                             fs::path(base.gait_file).filename().string() +
                             "; rigid 2 cycles, deformable 1 cycle")},
-       {"deformable_mesh", models::toml_quoted(describe_mesh(reference, base))},
+       {"deformable_mesh", models::toml_quoted(reference_mesh)},
        {"deformable_elements", std::to_string(deformable_elements)},
        {"reference_sdf_spacing_mm", number(reference.sdf_spacing_mm)},
        {"modulus_ratio", number(k_fit / k_spec_MPa)},
@@ -356,7 +357,7 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   s["search_range_MPa"] = {lo, hi};
   s["fit_at_search_bound"] = false;
   s["fit_evaluations"] = evaluations;
-  s["deformable_mesh"] = describe_mesh(reference, base);
+  s["deformable_mesh"] = reference_mesh;
   if (reference.implant_kind == "generic") s["reference_edge_length_mm"] = reference.edge_length_mm;
   s["reference_sdf_spacing_mm"] = reference.sdf_spacing_mm;
   s["deformable_elements"] = deformable_elements;

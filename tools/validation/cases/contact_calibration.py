@@ -7,8 +7,9 @@ import os
 
 TITLE = "Calibrated rigid contact law, every material, generic and DM implants"
 LONG = True  # seven fits of about 200 short rigid runs each (10-20 minutes) against the deformable
-# runs tools/scripts/calibrate_contact_laws.sh left in build/contact_laws; without them six
-# deformable cycles on about 50 000 elements more (30-60 minutes)
+# runs tools/scripts/calibrate_contact_laws.sh left in build/contact_laws, and gen_cfr's own
+# deformable cycle (the script's CFR-PEEK run lies on finer surfaces); without the script's runs
+# five deformable cycles on about 50 000 elements more (30-60 minutes)
 IMAGES = {"docs/img/contact_calibration_uhmwpe.png": "gen_uhmwpe/calibration.png",
           "docs/img/contact_calibration_dm_uhmwpe.png": "dm_uhmwpe/calibration.png"}
 

@@ -85,6 +85,14 @@ def _row(label, key):
             f"{{{key}_at_bound}} |")
 
 
+# the head of the one-row-per-law table (contact_calibration_cfr's too)
+ALL_HEAD = ("\n| implant, material | reference elements | K_eff / K | n | peak pressure, held out: "
+            "specified -> calibrated | mean pressure, held out | contact area, held out | stance "
+            "peak pressure: specified / calibrated / deformable (MPa) | stance mean pressure: "
+            "specified / calibrated / deformable (MPa) | fit at a search bound |\n"
+            "|---|---|---|---|---|---|---|---|---|---|\n")
+
+
 def _detail(key):
     k = key
     return f"""
@@ -109,8 +117,7 @@ n = {gen_uhmwpe_exponent:.3f} (at a search bound: {gen_uhmwpe_at_bound}).
 The same deformable run fitted with the exponent fixed at 1 (`--exponent 1`, the modulus alone):
 K_eff = {gen_uhmwpe_n1_ratio:.3f} K.
 """ + _detail("gen_uhmwpe_n1"),
-    "all": "\n| implant, material | reference elements | K_eff / K | n | peak pressure, held out: specified -> calibrated | mean pressure, held out | contact area, held out | stance peak pressure: specified / calibrated / deformable (MPa) | stance mean pressure: specified / calibrated / deformable (MPa) | fit at a search bound |\n|---|---|---|---|---|---|---|---|---|---|\n"
-    + "\n".join(_row(label, key) for label, key in (
+    "all": ALL_HEAD + "\n".join(_row(label, key) for label, key in (
         ("generic, UHMWPE", "gen_uhmwpe"), ("generic, UHMWPE, n fixed at 1", "gen_uhmwpe_n1"),
         ("generic, PEEK", "gen_peek"),
         ("generic, CFR-PEEK, reference on the default 1 mm facets (not the shipped law)", "gen_cfr"),

@@ -28,9 +28,5 @@ def run(v):
     CAL.record_fit(v, "gen_cfr_fine", d)
 
 
-TABLE = ("\n| implant, material | reference elements | K_eff / K | n | peak pressure, held out: "
-         "specified -> calibrated | mean pressure, held out | contact area, held out | stance peak "
-         "pressure: specified / calibrated / deformable (MPa) | stance mean pressure: specified / "
-         "calibrated / deformable (MPa) | fit at a search bound |\n|---|---|---|---|---|---|---|---|---|---|\n"
-         + CAL._row("generic, CFR-PEEK, reference on 0.25 mm facets", "gen_cfr_fine") + "\n"
-         + CAL._detail("gen_cfr_fine"))
+TABLE = (CAL.ALL_HEAD + CAL._row("generic, CFR-PEEK, reference on 0.25 mm facets", "gen_cfr_fine")
+         + "\n" + CAL._detail("gen_cfr_fine"))

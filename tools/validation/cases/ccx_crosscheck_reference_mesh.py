@@ -1,8 +1,9 @@
 """kneesim's deformable insert against CalculiX (ccx, an independent implicit FE code) on the
 contact-law calibration's reference mesh (0.5 mm surface elements over the footprint, 6 layers
-graded 0.15: the mesh on which UHMWPE pressures converge), linear elastic, at the two axial-load
-peaks, same pose and same axial load; then CalculiX with kneesim's own penalty at the first peak
-(the penalty's share of the difference). CalculiX solves a cut-out submodel: the elements within
+graded 0.15: the mesh on which UHMWPE pressures converge), linear elastic and J2 elastoplastic, at
+heel strike and the two axial-load peaks of the second gait cycle, same pose and same axial load;
+then CalculiX with kneesim's own penalty at the first peak (the penalty's share of the
+difference). CalculiX solves a cut-out submodel: the elements within
 6 mm (x-z) of kneesim's contact nodes at the instant, full thickness, the cut held at kneesim's
 displacement (ccx_crosscheck_submodel checks the cut against whole-insert solutions)."""
 import importlib.util
@@ -16,7 +17,7 @@ C = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(C)
 
 TITLE = "Deformable insert against CalculiX, reference mesh"
-LONG = True  # one kneesim cycle on ~49 000 elements and three ccx submodel solutions
+LONG = True  # two kneesim runs of two cycles on ~49 000 elements, seven ccx submodel solutions: ~2.5 h
 # run times on a shared machine: recorded, not compared (the 1 mm CalculiX instant took
 # 1001 s and 383 s on two days)
 NOISY = {"kneesim_s_per_cycle": math.inf, "ccx_s_mean": math.inf}
@@ -24,11 +25,11 @@ NOISY = {"kneesim_s_per_cycle": math.inf, "ccx_s_mean": math.inf}
 REFERENCE_MESH = ["deformable.element_size_mm=0.5", "deformable.layers=6",
                   "deformable.grading=0.15", "deformable.refine=contact"]
 SUBMODEL_MM = 6.0
-# the load peaks of the first cycle: CalculiX takes kneesim's pose and axial force of the
-# instant, whichever cycle it is in (heel strike of the first cycle is the start of the run,
-# not a heel strike: it needs a second cycle, which this machine's time did not allow)
-CYCLES = 1
-PCTS = (13, 45)
+# the instants of the second cycle: the first cycle's 0 % is the start of the run, not a heel
+# strike (the femur lowered onto the insert from rest)
+CYCLES = 2
+MODELS = ("elastic", "elastoplastic")
+PCTS = (0, 13, 45)
 SOFT_PCTS = (13,)  # CalculiX with kneesim's penalty: the first load peak only (time)
 BCS = C.BCS
 QUANTITIES = (("peak", "peak_pressure_MPa", 2), ("mean", "mean_pressure_MPa", 2),
@@ -37,9 +38,13 @@ QUANTITIES = (("peak", "peak_pressure_MPa", 2), ("mean", "mean_pressure_MPa", 2)
               ("vmb", "von_mises_subsurface_MPa", 2))
 
 
+def key(model, pct, bc, q, code):
+    return f"{'el' if model == 'elastic' else 'pl'}{pct}_{bc}_{q}_{code}"
+
+
 def _args():
     sets = [a for kv in REFERENCE_MESH + ["solver.threads=2"] for a in ("--set", kv)]
-    return sets + ["--cycles", str(CYCLES), "--materials", "elastic",
+    return sets + ["--cycles", str(CYCLES), "--materials", ",".join(MODELS),
                    "--pcts", ",".join(str(p) for p in PCTS), "--submodel-mm", "%g" % SUBMODEL_MM]
 
 
@@ -54,15 +59,15 @@ def run(v):
     result = v.json(out, "crosscheck.json")
     seconds = []
     for r in result["rows"]:
-        pct = int(round(r["gait_pct"]))
+        model, pct = r["model"], int(round(r["gait_pct"]))
         bc = "pose" if r["bc"] == "same pose" else "load"
         for q, name, _ in QUANTITIES:
             for code, side in (("k", "kneesim_"), ("c", "ccx_")):
-                v.figure(f"p{pct}_{bc}_{q}_{code}", r[side + name])
+                v.figure(key(model, pct, bc, q, code), r[side + name])
             if q in ("peak", "mean", "area"):
                 a, b = r["kneesim_" + name], r["ccx_" + name]
-                v.figure(f"p{pct}_{bc}_{q}_d", 100.0 * (a - b) / b, "%")
-        v.figure(f"p{pct}_ccx_elements", r["ccx_elements"])
+                v.figure(key(model, pct, bc, q, "d"), 100.0 * (a - b) / b, "%")
+        v.figure(key(model, pct, "ccx", "elements", "n"), r["ccx_elements"])
         if bc == "pose":
             seconds.append(r["ccx_seconds"])
     # the penalty's share: CalculiX with kneesim's own penalty (the surface element's stiffness
@@ -87,28 +92,32 @@ def run(v):
     v.figure("elements", run0["elements"])
     v.figure("penalty_factor", result["penalty_factor"])
     v.figure("kneesim_penalty_MPa_per_mm", run0["kneesim_penalty_median_MPa_per_mm"], "MPa/mm")
-    v.figure("kneesim_s_per_cycle", run0["kneesim_seconds"] / CYCLES, "s")
+    v.figure("kneesim_s_per_cycle", sum(x["kneesim_seconds"] for x in result["runs"])
+             / (CYCLES * len(result["runs"])), "s")
     v.figure("ccx_s_mean", sum(seconds) / len(seconds), "s")
 
 
 def _table():
-    head = ("| gait % | CalculiX femur | CalculiX elements | peak pressure MPa, kneesim / ccx | "
-            "mean pressure MPa | contact area mm² | axial contact force N | medial share | "
-            "von Mises surface layer MPa | von Mises subsurface MPa |\n" + "|---" * 10 + "|\n")
+    head = ("| insert material | gait % | CalculiX femur | CalculiX elements | peak pressure MPa, "
+            "kneesim / ccx | mean pressure MPa | contact area mm² | axial contact force N | "
+            "medial share | von Mises surface layer MPa | von Mises subsurface MPa |\n"
+            + "|---" * 11 + "|\n")
     rows = []
-    for pct in PCTS:
-        for bc, label in BCS:
-            cells = []
-            for q, _, digits in QUANTITIES:
-                cell = "{p%d_%s_%s_k:.%df} / {p%d_%s_%s_c:.%df}" % (pct, bc, q, digits,
-                                                                 pct, bc, q, digits)
-                if q in ("peak", "mean", "area"):
-                    cell += " ({p%d_%s_%s_d:+.1f} %%)" % (pct, bc, q)
-                cells.append(cell)
-            rows.append("| %d | %s | {p%d_ccx_elements:.0f} | %s |" % (pct, label, pct,
-                                                                    " | ".join(cells)))
+    for model in MODELS:
+        for pct in PCTS:
+            for bc, label in BCS:
+                cells = []
+                for q, _, digits in QUANTITIES:
+                    cell = "{%s:.%df} / {%s:.%df}" % (key(model, pct, bc, q, "k"), digits,
+                                                      key(model, pct, bc, q, "c"), digits)
+                    if q in ("peak", "mean", "area"):
+                        cell += " ({%s:+.1f} %%)" % key(model, pct, bc, q, "d")
+                    cells.append(cell)
+                rows.append("| %s | %d | %s | {%s:.0f} | %s |" % (
+                    model, pct, label, key(model, pct, "ccx", "elements", "n"), " | ".join(cells)))
     tail = ("\nkneesim's insert: the reference mesh ({elements:.0f} hex8 elements), linear "
-            "elastic, the load peaks of its first gait cycle; CalculiX: the submodel within %g mm "
+            "elastic and J2 elastoplastic, heel strike and the load peaks of its second gait "
+            "cycle; CalculiX: the submodel within %g mm "
             "of kneesim's contact nodes (its elements in the third column), C3D8I, penalty slope "
             "{penalty_factor:.0f} x the surface element's stiffness per area (kneesim's median "
             "{kneesim_penalty_MPa_per_mm:.0f} MPa/mm); run time on this machine: kneesim "

@@ -203,9 +203,22 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
       kept += " and " + (out / "insert_stress.partial.vtu").string();
     }
     io::write_json(out / "summary.failed.json", summary);
+    std::string where = "; the frames completed so far are in " + kept;
+    if (result.frames.empty()) {
+      // the frames are the last cycle's: a run that stopped before it kept none, which the
+      // message says rather than pointing at a table with a header only
+      const int stopped_in = std::min(
+          config.cycles, 1 + static_cast<int>(result.failed_at / built.model.period));
+      where = "; no frame was kept: the outputs are the last cycle's (cycle " +
+              std::to_string(config.cycles) + ") and the run stopped in cycle " +
+              std::to_string(stopped_in) + " (--cycles " + std::to_string(stopped_in) +
+              " keeps the frames up to the failure)";
+      if (result.status == engine::StepStatus::kInvertedElement) {
+        where += "; the insert's state is in " + (out / "insert_stress.partial.vtu").string();
+      }
+    }
     throw std::runtime_error(std::string("the simulation stopped at t = ") +
-                             std::to_string(result.failed_at) + " s: " + what +
-                             "; the frames completed so far are in " + kept);
+                             std::to_string(result.failed_at) + " s: " + what + where);
   }
   // a finished run's outputs are finite numbers: a NaN that slipped past the engine's state
   // check (e.g. in a contact figure) makes the run a failure, not a complete result

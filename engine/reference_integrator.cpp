@@ -108,8 +108,10 @@ RunResult simulate_reference(const Model& model, State& state, Data& data,
     fill_state(model, free, y, t, state);
     calc_forces(model, state, data);
     if (f > total - frames) result.frames.push_back(make_frame(model, state, data));
-    if (data.contact.max_penetration_ratio > model.contact.runaway_fraction) {
-      result.status = StepStatus::kRunawayPenetration;
+    // the explicit step's checks, at each frame: a rig that runs away stops here too rather
+    // than returning ranges of motion of hundreds of mm or a full turn as a result
+    if (const StepStatus runaway = find_runaway(model, data); runaway != StepStatus::kOk) {
+      result.status = runaway;
       result.failed_at = t;
       break;
     }

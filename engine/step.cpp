@@ -182,6 +182,16 @@ bool is_finite(const State& state) {
 
 }  // namespace
 
+StepStatus find_runaway(const Model& model, const Data& data) {
+  if (is_runaway(model, data)) return StepStatus::kRunawayMotion;
+  // beyond 90 % of the distance field's exact band a deeper overlap could not be measured
+  if (data.contact.max_penetration_ratio > model.contact.runaway_fraction ||
+      data.contact.max_penetration > 0.9 * model.femur_sdf.band) {
+    return StepStatus::kRunawayPenetration;
+  }
+  return StepStatus::kOk;
+}
+
 double calc_stability_ratio(const Model& model, const Data& data) {
   const double w = data.contact.omega_max;
   const double z = 0.5 * model.contact.damping_beta * w;
@@ -253,14 +263,10 @@ StepStatus step(const Model& model, State& state, Data& data) {
   ++state.step;
   // checks: NaN, runaway penetration
   if (!is_finite(state)) return StepStatus::kNotFinite;
+  // (runaway motion before the step's stability: a carriage that flew off says so)
   if (is_runaway(model, data)) return StepStatus::kRunawayMotion;
   if (calc_stability_ratio(model, data) > 1.0) return StepStatus::kUnstableStep;
-  // beyond 90 % of the distance field's exact band a deeper overlap could not be measured
-  if (data.contact.max_penetration_ratio > model.contact.runaway_fraction ||
-      data.contact.max_penetration > 0.9 * model.femur_sdf.band) {
-    return StepStatus::kRunawayPenetration;
-  }
-  return StepStatus::kOk;
+  return find_runaway(model, data);
 }
 
 State make_initial_state(const Model& model) {

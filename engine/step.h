@@ -22,6 +22,12 @@ double calc_stability_ratio(const Model& model, const Data& data);
 
 const char* to_string(StepStatus status);
 
+// kRunawayMotion when a carriage moved more than 50 mm or turned more than 60 deg from its
+// start, kRunawayPenetration when the deepest overlap passes contact.runaway_fraction of the
+// insert's thickness or leaves the distance field's band, else kOk (data: after calc_forces);
+// every integrator stops on them
+StepStatus find_runaway(const Model& model, const Data& data);
+
 // advances state by model.dt with the central-difference scheme; never allocates, never throws
 StepStatus step(const Model& model, State& state, Data& data);
 

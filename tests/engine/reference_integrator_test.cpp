@@ -23,3 +23,28 @@ TEST_CASE("CVODE and central difference agree on AP and IE at the default settin
   CHECK(a.ap_rms_mm < 0.35);
   CHECK(a.ie_rms_deg < 0.5);
 }
+
+TEST_CASE("CVODE stops a rig that runs away, as the explicit step does") {
+  // no restraint, no friction and ten times the AP force: nothing holds the tibial carriage,
+  // which slides off the insert within the first 0.1 s. Reference: the explicit step's runaway
+  // check (50 mm / 60 deg from the start, engine/step.h find_runaway); the CVODE run must stop
+  // with the same status instead of returning a range of motion of hundreds of mm as a result.
+  models::BuiltModel built = models::build_model(test::default_config(
+      {"implant.edge_length_mm=3", "rig.restraint.kind=none", "contact.friction=0",
+       "gait.ap_force_scale=10", "contact.calibration=auto"}));
+  engine::Model& model = built.model;
+  engine::RunOptions options;
+  options.cycles = 1;
+  for (const engine::IntegratorKind kind :
+       {engine::IntegratorKind::kCentralDifference, engine::IntegratorKind::kCvode}) {
+    model.integrator = kind;
+    engine::State s = engine::make_initial_state(model);
+    engine::Data d = engine::make_data(model);
+    const engine::RunResult r = engine::simulate(model, s, d, options);
+    MESSAGE("integrator " << static_cast<int>(kind) << ": " << std::string(engine::to_string(r.status))
+                          << " at t = " << r.failed_at << " s");
+    CHECK(r.status == engine::StepStatus::kRunawayMotion);
+    CHECK(r.failed_at > 0.0);
+    CHECK(r.failed_at < 0.2 * model.period);
+  }
+}

@@ -192,6 +192,13 @@ GaitRunReport run_gait_job(const GaitRunJob& job) {
     summary["failure"] = engine::to_string(result.status);
     summary["failed_at_s"] = result.failed_at;
     std::string what = engine::to_string(result.status);
+    if (result.status == engine::StepStatus::kRunawayMotion && built.model.coupled_rig_step) {
+      // measured: on a joint that friction alone holds, the coupled step ran away at the
+      // default step where CVODE and a quarter of the step did not (validation.md, rig step)
+      what += " (the coupled rig step can run away at the default step where friction alone "
+              "holds the joint: repeat with --set solver.dt_safety=0.2; docs/validation.md, "
+              "rig step)";
+    }
     std::string kept = (out / "kinematics.partial.csv").string();
     if (result.status == engine::StepStatus::kInvertedElement) {
       // the state is the one the inversion was found in: the step stopped before moving it

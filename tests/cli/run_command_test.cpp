@@ -125,6 +125,35 @@ TEST_CASE("kneesim run with the coupled rig step runs end to end and says so") {
   CHECK(bad.err.find("coupled") != std::string::npos);
 }
 
+TEST_CASE("a coupled rig step that runs away says how to repeat it") {
+  // the JW measured loads with a 3.75 mm medial load-line shift (skipped without
+  // $KNEESIM_DATA): the coupled step runs away at the default step at t = 0.58 s while CVODE
+  // and a quarter of the step complete (docs/validation.md, rig step); the one-line error
+  // names the remedy, and the frames up to the failure are kept (one cycle asked)
+  const char* data = std::getenv("KNEESIM_DATA");
+  const char* source = std::getenv("KNEESIM_SOURCE_DIR");
+  if (data == nullptr || source == nullptr ||
+      !fs::exists(fs::path(data) / "gc4_jw/femoral_component.stl")) {
+    MESSAGE("skipped: the JW meshes are not in $KNEESIM_DATA");
+    return;
+  }
+  const std::string config = (fs::path(source) / "models/examples/jw_measured_loads.toml").string();
+  TempDir tmp;
+  const fs::path out = tmp.path / "coupled";
+  const Result r = run_kneesim(
+      {"run", config, "--out", out.string(), "--no-plots", "--quiet", "--cycles", "1", "--set",
+       "implant.mesh.femur_origin_mm=[-3.8, 1.7, 0.0]", "--set",
+       "gait.vv_torque_axial_arm_mm=3.75", "--set", "solver.rig_coupling=coupled"},
+      tmp.path);
+  INFO("stderr: " << r.err);
+  CHECK(r.exit_code == 1);
+  CHECK(count_lines(without_contact_law_warning(r.err)) == 1);
+  CHECK(r.err.find("runaway motion") != std::string::npos);
+  CHECK(r.err.find("solver.dt_safety=0.2") != std::string::npos);
+  CHECK(r.err.find("the frames completed so far are in") != std::string::npos);
+  CHECK(count_lines(slurp(out / "kinematics.partial.csv")) > 40);
+}
+
 TEST_CASE("kneesim run refines an imported femur on request, and refuses too fine a target") {
   // the Grand Challenge JW meshes (skipped without $KNEESIM_DATA): implant.mesh.femur_refine_mm
   // (models/smooth_refine.h) runs end to end, and each level quarters the femur's triangles

@@ -118,7 +118,7 @@ def _table():
     tail = ("\nkneesim's insert: the reference mesh ({elements:.0f} hex8 elements), linear "
             "elastic and J2 elastoplastic, heel strike and the load peaks of its second gait "
             "cycle; CalculiX: the submodel within %g mm "
-            "of kneesim's contact nodes (its elements in the third column), C3D8I, penalty slope "
+            "of kneesim's contact nodes (its elements in the fourth column), C3D8I, penalty slope "
             "{penalty_factor:.0f} x the surface element's stiffness per area (kneesim's median "
             "{kneesim_penalty_MPa_per_mm:.0f} MPa/mm); run time on this machine: kneesim "
             "{kneesim_s_per_cycle:.0f} s per gait cycle, ccx {ccx_s_mean:.0f} s per instant (two "

@@ -19,6 +19,23 @@
 namespace fs = std::filesystem;
 using namespace kneesim::test;
 
+namespace {
+
+// models/examples/<name> when the Grand Challenge JW meshes are in $KNEESIM_DATA, else empty
+// (the caller skips)
+std::string find_jw_example(const char* name) {
+  const char* data = std::getenv("KNEESIM_DATA");
+  const char* source = std::getenv("KNEESIM_SOURCE_DIR");
+  if (data == nullptr || source == nullptr ||
+      !fs::exists(fs::path(data) / "gc4_jw/femoral_component.stl")) {
+    MESSAGE("skipped: the JW meshes are not in $KNEESIM_DATA");
+    return {};
+  }
+  return (fs::path(source) / "models/examples" / name).string();
+}
+
+}  // namespace
+
 TEST_CASE("kneesim run writes the complete result set") {
   TempDir tmp;
   const fs::path out = tmp.path / "result";
@@ -130,14 +147,8 @@ TEST_CASE("a coupled rig step that runs away says how to repeat it") {
   // $KNEESIM_DATA): the coupled step runs away at the default step at t = 0.58 s while CVODE
   // and a quarter of the step complete (docs/validation.md, rig step); the one-line error
   // names the remedy, and the frames up to the failure are kept (one cycle asked)
-  const char* data = std::getenv("KNEESIM_DATA");
-  const char* source = std::getenv("KNEESIM_SOURCE_DIR");
-  if (data == nullptr || source == nullptr ||
-      !fs::exists(fs::path(data) / "gc4_jw/femoral_component.stl")) {
-    MESSAGE("skipped: the JW meshes are not in $KNEESIM_DATA");
-    return;
-  }
-  const std::string config = (fs::path(source) / "models/examples/jw_measured_loads.toml").string();
+  const std::string config = find_jw_example("jw_measured_loads.toml");
+  if (config.empty()) return;
   TempDir tmp;
   const fs::path out = tmp.path / "coupled";
   const Result r = run_kneesim(
@@ -157,14 +168,8 @@ TEST_CASE("a coupled rig step that runs away says how to repeat it") {
 TEST_CASE("kneesim run refines an imported femur on request, and refuses too fine a target") {
   // the Grand Challenge JW meshes (skipped without $KNEESIM_DATA): implant.mesh.femur_refine_mm
   // (models/smooth_refine.h) runs end to end, and each level quarters the femur's triangles
-  const char* data = std::getenv("KNEESIM_DATA");
-  const char* source = std::getenv("KNEESIM_SOURCE_DIR");
-  if (data == nullptr || source == nullptr ||
-      !fs::exists(fs::path(data) / "gc4_jw/femoral_component.stl")) {
-    MESSAGE("skipped: the JW meshes are not in $KNEESIM_DATA");
-    return;
-  }
-  const std::string config = (fs::path(source) / "models/examples/jw_stanmore.toml").string();
+  const std::string config = find_jw_example("jw_stanmore.toml");
+  if (config.empty()) return;
   TempDir tmp;
   const fs::path plain = tmp.path / "plain", refined = tmp.path / "refined";
   const Result a = run_kneesim({"run", config, "--out", plain.string(), "--no-plots", "--quiet",

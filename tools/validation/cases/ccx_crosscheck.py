@@ -25,14 +25,8 @@ NOISY = {"kneesim_s_per_cycle": math.inf, "ccx_s_mean": math.inf}
 MODELS = ("elastic", "elastoplastic")
 PCTS = (0, 13, 45)
 BCS = C.BCS
-QUANTITIES = (("peak", "peak_pressure_MPa", 2), ("mean", "mean_pressure_MPa", 2),
-              ("area", "contact_area_mm2", 1), ("force", "axial_force_N", 0),
-              ("share", "medial_share", 3), ("vms", "von_mises_surface_MPa", 2),
-              ("vmb", "von_mises_subsurface_MPa", 2))
-
-
-def key(model, pct, bc, q, code):
-    return f"{'el' if model == 'elastic' else 'pl'}{pct}_{bc}_{q}_{code}"
+QUANTITIES = C.QUANTITIES
+key = C.key
 
 
 def run(v):
@@ -47,14 +41,7 @@ def run(v):
     result = v.json(out, "crosscheck.json")
     seconds = []
     for r in result["rows"]:
-        model, pct = r["model"], int(round(r["gait_pct"]))
-        bc = "pose" if r["bc"] == "same pose" else "load"
-        for q, name, _ in QUANTITIES:
-            for code, side in (("k", "kneesim_"), ("c", "ccx_")):
-                v.figure(key(model, pct, bc, q, code), r[side + name])
-            if q in ("peak", "mean", "area"):
-                a, b = r["kneesim_" + name], r["ccx_" + name]
-                v.figure(key(model, pct, bc, q, "d"), 100.0 * (a - b) / b, "%")
+        C.record_row(v, r)
         seconds.append(r["ccx_seconds"])
     # the penalty's share: CalculiX with kneesim's own penalty (the surface element's
     # stiffness) on the elastic export at the three instants
@@ -90,15 +77,7 @@ def _table():
     for model in MODELS:
         for pct in PCTS:
             for bc, label in BCS:
-                cells = []
-                for q, _, digits in QUANTITIES:
-                    f = "{%s:.%df}" % (key(model, pct, bc, q, "k"), digits)
-                    g = "{%s:.%df}" % (key(model, pct, bc, q, "c"), digits)
-                    cell = f + " / " + g
-                    if q in ("peak", "mean", "area"):
-                        cell += " ({%s:+.1f} %%)" % key(model, pct, bc, q, "d")
-                    cells.append(cell)
-                rows.append("| %s | %d | %s | %s |" % (model, pct, label, " | ".join(cells)))
+                rows.append("| %s | %d | %s | %s |" % (model, pct, label, C.row_cells(model, pct, bc)))
     tail = ("\nkneesim's insert: the %g mm mesh ({elements:.0f} hex8 elements); CalculiX's penalty slope: "
             "{penalty_factor:.0f} x the surface element's stiffness per area; run time on this "
             "machine: kneesim {kneesim_s_per_cycle:.0f} s per gait cycle, ccx "

@@ -32,14 +32,8 @@ MODELS = ("elastic", "elastoplastic")
 PCTS = (0, 13, 45)
 SOFT_PCTS = (13,)  # CalculiX with kneesim's penalty: the first load peak only (time)
 BCS = C.BCS
-QUANTITIES = (("peak", "peak_pressure_MPa", 2), ("mean", "mean_pressure_MPa", 2),
-              ("area", "contact_area_mm2", 1), ("force", "axial_force_N", 0),
-              ("share", "medial_share", 3), ("vms", "von_mises_surface_MPa", 2),
-              ("vmb", "von_mises_subsurface_MPa", 2))
-
-
-def key(model, pct, bc, q, code):
-    return f"{'el' if model == 'elastic' else 'pl'}{pct}_{bc}_{q}_{code}"
+QUANTITIES = C.QUANTITIES
+key = C.key
 
 
 def _args():
@@ -59,14 +53,7 @@ def run(v):
     result = v.json(out, "crosscheck.json")
     seconds = []
     for r in result["rows"]:
-        model, pct = r["model"], int(round(r["gait_pct"]))
-        bc = "pose" if r["bc"] == "same pose" else "load"
-        for q, name, _ in QUANTITIES:
-            for code, side in (("k", "kneesim_"), ("c", "ccx_")):
-                v.figure(key(model, pct, bc, q, code), r[side + name])
-            if q in ("peak", "mean", "area"):
-                a, b = r["kneesim_" + name], r["ccx_" + name]
-                v.figure(key(model, pct, bc, q, "d"), 100.0 * (a - b) / b, "%")
+        model, pct, bc = C.record_row(v, r)
         v.figure(key(model, pct, "ccx", "elements", "n"), r["ccx_elements"])
         if bc == "pose":
             seconds.append(r["ccx_seconds"])
@@ -106,15 +93,9 @@ def _table():
     for model in MODELS:
         for pct in PCTS:
             for bc, label in BCS:
-                cells = []
-                for q, _, digits in QUANTITIES:
-                    cell = "{%s:.%df} / {%s:.%df}" % (key(model, pct, bc, q, "k"), digits,
-                                                      key(model, pct, bc, q, "c"), digits)
-                    if q in ("peak", "mean", "area"):
-                        cell += " ({%s:+.1f} %%)" % key(model, pct, bc, q, "d")
-                    cells.append(cell)
                 rows.append("| %s | %d | %s | {%s:.0f} | %s |" % (
-                    model, pct, label, key(model, pct, "ccx", "elements", "n"), " | ".join(cells)))
+                    model, pct, label, key(model, pct, "ccx", "elements", "n"),
+                    C.row_cells(model, pct, bc)))
     tail = ("\nkneesim's insert: the reference mesh ({elements:.0f} hex8 elements), linear "
             "elastic and J2 elastoplastic, heel strike and the load peaks of its second gait "
             "cycle; CalculiX: the submodel within %g mm "

@@ -131,17 +131,26 @@ inline __attribute__((always_inline)) void batch_kernel(
     const Sym6* plastic_strain, const double* alpha, int count, const ForceOut& force_out,
     Hex8BatchResult& out, int o) {
   using Vec = VecN<L>;
-  // F_ij = sum_a x_a,i B_a,j
-  Vec B[kHexNodes][3];
-  for (int a = 0; a < kHexNodes; ++a)
-    for (int j = 0; j < 3; ++j) B[a][j] = load<L>(ref.gradient[a][j] + o);
-  Vec F[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      Vec s = x[0][i] * B[0][j];
-      for (int a = 1; a < kHexNodes; ++a) s = s + x[a][i] * B[a][j];
-      F[i][j] = s;
+  // one pass over the nodes: F_ij = sum_a x_a,i B_a,j and the hourglass sums
+  // xh_m,i = sum_a h_m,a x_a,i, each accumulated in node order (the order of the separate
+  // loops they replace, so the same bits). x and B die here: kept to the end (the forces
+  // need B, the hourglass x) they were 48 vectors, more than the 32 registers, and spilled to
+  // the stack; B is read again for the forces instead
+  Vec F[3][3], xh[kHourglassModes][3];
+#pragma GCC unroll 8
+  for (int a = 0; a < kHexNodes; ++a) {
+    Vec Ba[3];
+    for (int j = 0; j < 3; ++j) Ba[j] = load<L>(ref.gradient[a][j] + o);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) F[i][j] = a == 0 ? x[0][i] * Ba[j] : F[i][j] + x[a][i] * Ba[j];
+      for (int m = 0; m < kHourglassModes; ++m) {
+        if (a == 0)
+          xh[m][i] = hourglass_sign(m, 0) > 0 ? x[0][i] : -x[0][i];
+        else
+          xh[m][i] = hourglass_sign(m, a) > 0 ? xh[m][i] + x[a][i] : xh[m][i] - x[a][i];
+      }
     }
+  }
   store<L>(out.det_F + o, F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
                        F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
                        F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]));
@@ -222,12 +231,8 @@ inline __attribute__((always_inline)) void batch_kernel(
   for (int m = 0; m < kHourglassModes; ++m) {
     for (int j = 0; j < 3; ++j) hX[m][j] = load<L>(ref.hourglass_moment[m][j] + o);
     Vec q[3];
-    for (int i = 0; i < 3; ++i) {
-      Vec xi[kHexNodes];
-      for (int a = 0; a < kHexNodes; ++a) xi[a] = x[a][i];
-      q[i] = 0.125 * (signed_sum(m, xi) -
-                      (F[i][0] * hX[m][0] + F[i][1] * hX[m][1] + F[i][2] * hX[m][2]));
-    }
+    for (int i = 0; i < 3; ++i)
+      q[i] = 0.125 * (xh[m][i] - (F[i][0] * hX[m][0] + F[i][1] * hX[m][1] + F[i][2] * hX[m][2]));
     Vec K[6];
     for (int v = 0; v < 6; ++v) K[v] = load<L>(ref.hourglass_stiffness[m][v] + o);
     for (int i = 0; i < 3; ++i)
@@ -250,11 +255,13 @@ inline __attribute__((always_inline)) void batch_kernel(
   // kHexNatural and branched on them, every batch)
 #pragma GCC unroll 8
   for (int a = 0; a < kHexNodes; ++a) {
+    Vec Ba[3];
+    for (int j = 0; j < 3; ++j) Ba[j] = load<L>(ref.gradient[a][j] + o);
 #pragma GCC unroll 3
     for (int i = 0; i < 3; ++i) {
       Vec h = hourglass_sign(0, a) > 0 ? kq[0][i] : -kq[0][i];
       for (int m = 1; m < kHourglassModes; ++m) h = hourglass_sign(m, a) > 0 ? h + kq[m][i] : h - kq[m][i];
-      store<L>(force.f[a][i] + o, P[i][0] * B[a][0] + P[i][1] * B[a][1] + P[i][2] * B[a][2] + 0.125 * h);
+      store<L>(force.f[a][i] + o, P[i][0] * Ba[0] + P[i][1] * Ba[1] + P[i][2] * Ba[2] + 0.125 * h);
     }
   }
   if constexpr (kScatter) {

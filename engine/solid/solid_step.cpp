@@ -46,9 +46,11 @@ void run_element_loop(const SolidModel& model, const SolidState& state, SolidDat
     for (int k = model.range_interior_start[r]; k < model.range_interior_start[r + 1]; ++k) {
       data.internal_force[model.range_interior[k]].setZero();
     }
+    // one result block for the range's batches (every batch writes what it reads back; built
+    // per batch, its eight StressUpdates were initialized every time)
+    Hex8BatchResult res;
     for (int b = model.range_batch[r]; b < model.range_batch[r + 1]; ++b) {
       const int e0 = b * kBatchLanes, count = std::min(kBatchLanes, n_el - e0);
-      Hex8BatchResult res;
       calc_hex8_batch_scatter(model.batches[b], model.material, state.position.data(),
                               plastic ? &state.plastic_strain[e0] : nullptr,
                               plastic ? &state.alpha[e0] : nullptr, count, node_force,

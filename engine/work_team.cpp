@@ -173,9 +173,14 @@ void WorkTeam::run_erased(int n, Fn fn, void* context) {
   const Clock::time_point t2 = Clock::now();
   if (!adaptive_) return;
   // the policy: a wait longer than the caller's own work is a stall; a loop whose every task
-  // the caller ran itself is one the helpers did not help (they were not scheduled in time)
+  // the caller ran itself is one the helpers did not help (they were not scheduled in time).
+  // What the loop would have cost the caller alone: its own tasks' time per task, times n
   const double own = microseconds(t1 - t0), wait = microseconds(t2 - t1);
   ++window_loops_;
+  if (mine > 0) {  // (a helper can take every task, the caller's own too, if it was late)
+    window_team_us_ += own + wait;
+    window_solo_us_ += own / mine * n;
+  }
   if (wait > own && wait > 5.0) {
     ++window_stalls_;
     ++stats_.stalls;
@@ -185,15 +190,27 @@ void WorkTeam::run_erased(int n, Fn fn, void* context) {
     ++stats_.unhelped_loops;
   }
   const bool window_done = window_loops_ >= kWindow;
-  if (window_stalls_ >= kStallsToGoSolo || (window_done && window_unhelped_ >= kUnhelpedToGoSolo)) {
+  // go solo on a net loss, not on stalls alone: a host that deschedules a helper now and then
+  // (a virtual machine's neighbours) costs a few loops while the rest of the window gains;
+  // decided at the window's end, or at once when the stalls have made the window so far take
+  // more than twice the caller alone
+  const bool net_loss = window_team_us_ > window_solo_us_;
+  const bool gross_loss = window_team_us_ > 2.0 * window_solo_us_;
+  if ((window_stalls_ >= kStallsToGoSolo && gross_loss) ||
+      (window_done && (net_loss || window_unhelped_ >= kUnhelpedToGoSolo))) {
     solo_left_ = backoff_;
     backoff_ = std::min(2 * backoff_, kMaxBackoff);
     ++stats_.solo_switches;
-    window_loops_ = window_stalls_ = window_unhelped_ = 0;
+    reset_window();
   } else if (window_done) {
-    if (window_stalls_ == 0) backoff_ = kFirstBackoff;
-    window_loops_ = window_stalls_ = window_unhelped_ = 0;
+    backoff_ = kFirstBackoff;  // a window the team won
+    reset_window();
   }
+}
+
+void WorkTeam::reset_window() {
+  window_loops_ = window_stalls_ = window_unhelped_ = 0;
+  window_team_us_ = window_solo_us_ = 0.0;
 }
 
 }  // namespace kneesim::engine

@@ -19,12 +19,18 @@
 //   futex (std::atomic::wait); the caller wakes it only when it is asleep. The calling thread
 //   waits for claimed tasks the same way.
 // - Never slower: the calling thread times its own work and its wait for claimed tasks in each
-//   loop. A wait longer than its own work means a helper ran at less than half its speed (it
-//   was descheduled mid-task, or shares its core); then one thread alone would have been at
-//   least as fast. After kStallsToGoSolo such loops within kWindow loops the team goes solo:
-//   the calling thread runs every task itself, the helpers sleep. After `backoff` loops it
-//   tries the team again; the backoff doubles each time the team fails again (up to
-//   kMaxBackoff) and resets after a window without stalls. Solo and team give the same bits.
+//   loop, and from its own time per task what the loop would have cost it alone. Over a window
+//   of kWindow loops it compares the two: a window the team lost (a helper descheduled or
+//   sharing its core ran at less than half the caller's speed often enough to outweigh the
+//   loops it helped) makes the team go solo: the calling thread runs every task itself, the
+//   helpers sleep. A loop whose wait is longer than the caller's own work is a stall; after
+//   kStallsToGoSolo stalls the team goes solo at once if the window so far took more than
+//   twice the caller alone. Stalls alone do not decide: on a virtual machine whose host
+//   deschedules a helper now and then, a few loops stall while the rest of the window gains
+//   (bench_solid on an idle 2-vCPU VM, 2026-11-29: the stall rule alone ran 42 % of the loops
+//   solo). After `backoff` loops solo the team is tried again; the backoff doubles each time
+//   the team loses again (up to kMaxBackoff) and resets after a window it won. Solo and team
+//   give the same bits.
 //   The team also goes solo after a window in which the caller ran every task itself in
 //   kUnhelpedToGoSolo of the kWindow loops: the helpers were not scheduled in time (the other
 //   cores are taken), and their wake-ups and spinning then only take time from the caller
@@ -92,6 +98,7 @@ class WorkTeam {
   bool claim(int task, uint32_t generation);
   void execute(int task);
   void run_solo(int n, Fn fn, void* context);
+  void reset_window();
 
   std::vector<std::thread> helpers_;
   // the published loop: fn_ and context_ are written before loop_ (release) and read only
@@ -120,6 +127,8 @@ class WorkTeam {
   int window_loops_ = 0;
   int window_stalls_ = 0;
   int window_unhelped_ = 0;
+  double window_team_us_ = 0.0;  // the window's team loops, wall [us]
+  double window_solo_us_ = 0.0;  // what they would have cost the caller alone [us]
   WorkTeamStats stats_;
 };
 

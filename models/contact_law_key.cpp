@@ -9,6 +9,7 @@
 
 #include "engine/errors.h"
 #include "models/config.h"
+#include "models/config_registry.h"
 
 namespace kneesim::models {
 namespace {
@@ -172,6 +173,20 @@ Config make_calibration_config(const Config& c, bool own_reference) {
   r.deformable_hardening_MPa = c.deformable_hardening_MPa;
   r.deformable_yield_cap_MPa = c.deformable_yield_cap_MPa;
   return r;
+}
+
+std::vector<std::string> calibration_unused_keys(const Config& config) {
+  Config given = config;
+  Config used = make_calibration_config(config, /*own_reference=*/true);
+  using config_detail::Field, config_detail::Registry, config_detail::make_registry;
+  const Registry a = make_registry(given), b = make_registry(used);
+  std::vector<std::string> unused;
+  for (const auto& [key, field] : a.fields()) {
+    if (key == "contact.calibration") continue;  // the calibration sets it itself
+    const Field* other = b.find(key);
+    if (other && field.show && other->show && field.show() != other->show()) unused.push_back(key);
+  }
+  return unused;  // std::map order: sorted
 }
 
 }  // namespace kneesim::models

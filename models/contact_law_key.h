@@ -21,6 +21,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace kneesim::models {
 
@@ -64,5 +65,10 @@ inline constexpr ConfigSetting kContactCalibrationReferenceMesh[] = {
 // default [deformable] keys with kContactCalibrationReferenceMesh (what a rigid config's law is
 // looked up and calibrated on first use under: a rigid run does not use [deformable])
 Config make_calibration_config(const Config& config, bool own_reference = false);
+
+// the keys whose value in `config` the calibration does not use: those where
+// make_calibration_config(config, true) holds another value (the load case, the solver, the
+// contact settings besides the law, the rigid runs' surfaces), sorted
+std::vector<std::string> calibration_unused_keys(const Config& config);
 
 }  // namespace kneesim::models

@@ -127,6 +127,7 @@ nlohmann::json describe_model(const models::BuiltModel& built, const models::Con
   j["integrator"] = config.integrator;
   j["rig_coupling"] = config.rig_coupling;
   j["gait_file"] = m.gait.source();
+  j["gait_period_s"] = m.period;
   j["articular_elements"] = m.insert.size();
   j["dt_s"] = m.dt;
   j["dt_critical_s"] = m.dt_critical;

@@ -1,9 +1,10 @@
-// `kneesim calibrate-contact` end to end on a coarse, short case (3 mm elements, 3 layers,
-// one 0.2 s cycle): it writes the law file, the comparison and the summary; the calibrated law
-// reduces the stance peak-pressure error on the fitting window (it minimizes it there, so it
-// cannot do worse than the specified law unless the specified modulus lies outside the search
-// range); a config naming the law file runs, and one of another material is refused (exit 2,
-// one sentence naming the file). The acceptance figures come from the full run in
+// `kneesim calibrate-contact` end to end on a coarse case (3 mm elements, 3 layers, the
+// reference load case's 1 s cycle): it writes the law file, the comparison and the summary;
+// the calibrated law reduces the stance peak-pressure error on the fitting window (it
+// minimizes it there, so it cannot do worse than the specified law unless the specified
+// modulus lies outside the search range); a config naming the law file runs, and one of
+// another material is refused (exit 2, one sentence naming the file), as is a --set of a key
+// the reference load case would not use. The acceptance figures come from the full run in
 // docs/deformable.md.
 #include <doctest/doctest.h>
 
@@ -19,9 +20,8 @@ namespace fs = std::filesystem;
 TEST_CASE("kneesim calibrate-contact writes a law file that a config can name") {
   TempDir tmp;
   const fs::path out = tmp.path / "cal";
-  const std::vector<std::string> coarse = {
-      "--set", "deformable.layers=3", "--set", "implant.edge_length_mm=2",
-      "--set", "gait.period_s=0.2",   "--set", "solver.threads=2"};
+  const std::vector<std::string> coarse = {"--set", "deformable.layers=3", "--set",
+                                           "solver.threads=2"};
   std::vector<std::string> args = {"calibrate-contact", "--material", "uhmwpe", "--out",
                                    out.string(), "--element-mm", "3"};
   args.insert(args.end(), coarse.begin(), coarse.end());
@@ -55,6 +55,17 @@ TEST_CASE("kneesim calibrate-contact writes a law file that a config can name") 
   CHECK(other.exit_code == 2);
   CHECK(other.err.find(law) != std::string::npos);
   CHECK(other.err.find("calibrated for material \"uhmwpe\"") != std::string::npos);
+
+  // a key the calibration's reference load case would not use is refused, not dropped
+  for (const char* set : {"rig.preset=\"iso\"", "gait.period_s=0.2", "implant.edge_length_mm=2"}) {
+    CAPTURE(set);
+    const Result refused = run_kneesim({"calibrate-contact", "--out", (tmp.path / "cal3").string(),
+                                        "--set", set}, tmp.path);
+    CHECK(refused.exit_code == 2);
+    CHECK(refused.err.find(std::string("--set ") + set + ": the calibration runs on its reference "
+                           "load case") != std::string::npos);
+    CHECK_FALSE(fs::exists(tmp.path / "cal3" / "summary.json"));
+  }
 }
 
 // the deformable reference on finer surfaces than the rigid runs' (--reference-edge-mm): the
@@ -64,7 +75,7 @@ TEST_CASE("kneesim calibrate-contact: the reference's surfaces are recorded and 
   const std::vector<std::string> mesh = {
       "--set", "deformable.element_size_mm=3", "--set", "deformable.layers=3",
       "--set", "deformable.grading=0.15",      "--set", "deformable.refine=\"contact\"",
-      "--set", "gait.period_s=0.2",            "--set", "solver.threads=2"};
+      "--set", "solver.threads=2"};
   std::vector<std::string> run = {"run", "--quiet", "--no-plots", "--cycles", "1",
                                   "--set", "insert=\"deformable\"", "--set",
                                   "implant.edge_length_mm=1.5", "--out",

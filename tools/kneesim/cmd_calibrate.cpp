@@ -10,6 +10,7 @@
 #include "analysis/report/command_reports.h"
 #include "analysis/run/calibrate_contact_law.h"
 #include "analysis/run/gait_run.h"
+#include "engine/errors.h"
 #include "engine/io/output_folder.h"
 #include "models/contact_law_key.h"
 #include "tools/kneesim/commands.h"
@@ -47,6 +48,30 @@ void calibrate(const CalibrateArgs& a) {
   run::ContactCalibrationJob job;
   job.config = run::load_run_config(a.config, sets);
   job.config.contact_calibration = "auto";
+  // the calibration runs on its reference load case: a --set it would not use is refused, a
+  // config's such keys are named (a config for runs may set its rig, gait and solver)
+  std::string from_config;
+  for (const std::string& key : models::calibration_unused_keys(job.config)) {
+    for (const std::string& s : a.sets) {
+      std::string k = s.substr(0, s.find('='));
+      k.erase(k.find_last_not_of(" \t") + 1);
+      k.erase(0, k.find_first_not_of(" \t"));
+      if (k != key) continue;
+      throw InputError("calibrate-contact: --set " + s + ": the calibration runs on its "
+                       "reference load case (the stanmore rig, the shipped gait, the default "
+                       "solver and contact settings besides contact.law, the rigid runs on the "
+                       "default surfaces), so " + key + " would not be used; set the implant's "
+                       "geometry and meshes, material.* and deformable.* keys, or "
+                       "--reference-edge-mm and --reference-sdf-mm for the reference's "
+                       "surfaces.");
+    }
+    from_config += (from_config.empty() ? "" : ", ") + key;
+  }
+  if (!from_config.empty() && !a.quiet) {
+    std::fprintf(stderr, "calibrate-contact: not used (the calibration runs on its reference "
+                 "load case): %s from %s\n", from_config.c_str(),
+                 a.config.empty() ? "the defaults" : a.config.c_str());
+  }
   job.out = a.out;
   job.deformable_from = a.deformable_from;
   job.command = a.command;
@@ -89,7 +114,10 @@ void add_calibrate_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--material", args->material,
                   "material name (library or the config's); default: the config's");
-  cmd->add_option("--set", args->sets, "override a config key (repeatable)");
+  cmd->add_option("--set", args->sets,
+                  "override an implant geometry or mesh, material.*, deformable.* or "
+                  "solver.threads key (repeatable; a key of the load case, e.g. rig.preset or "
+                  "gait.*, is refused: the fit runs on the reference load case)");
   cmd->add_option("--out", args->out, "output folder")->capture_default_str();
   cmd->add_option("--element-mm", args->element_mm,
                   "deformable insert element size [mm] (deformable.element_size_mm; default: "

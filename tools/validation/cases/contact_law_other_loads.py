@@ -10,7 +10,7 @@ growth with the load the J2 insert's yielding takes away."""
 import math
 
 TITLE = "Calibrated contact law on load cases it was not fitted on"
-LONG = True  # seven deformable cycles of about 48 000 elements (4-8 minutes each on 2 cores)
+LONG = True  # seven deformable cycles of about 48 000 elements (6-10 minutes each; 63 minutes in all on a shared machine)
 
 # the calibration's reference mesh (models/contact_law_key.h kContactCalibrationReferenceMesh)
 REFERENCE_MESH = ["deformable.element_size_mm=0.5", "deformable.layers=6",

@@ -12,6 +12,7 @@
 #include "analysis/run/gait_run.h"
 #include "engine/errors.h"
 #include "engine/io/output_folder.h"
+#include "models/config.h"
 #include "models/contact_law_key.h"
 #include "tools/kneesim/commands.h"
 
@@ -53,10 +54,7 @@ void calibrate(const CalibrateArgs& a) {
   std::string from_config;
   for (const std::string& key : models::calibration_unused_keys(job.config)) {
     for (const std::string& s : a.sets) {
-      std::string k = s.substr(0, s.find('='));
-      k.erase(k.find_last_not_of(" \t") + 1);
-      k.erase(0, k.find_first_not_of(" \t"));
-      if (k != key) continue;
+      if (models::parse_override(s).key != key) continue;
       throw InputError("calibrate-contact: --set " + s + ": the calibration runs on its "
                        "reference load case (the stanmore rig, the shipped gait, the default "
                        "solver and contact settings besides contact.law, the rigid runs on the "

@@ -27,16 +27,6 @@ constexpr double kFitLo = 0.0, kFitHi = 30.0, kHeldLo = 30.0, kHeldHi = 60.0;
 constexpr double kSearchLo = 0.01, kSearchHi = 10.0;  // K_eff / K
 constexpr double kExponentLo = 0.3, kExponentHi = 1.5;  // n of p = K_eff g^n
 
-nlohmann::json errors_json(const TraceErrors& e) {
-  return {{"peak_pressure_rms", e.peak}, {"mean_pressure_rms", e.mean},
-          {"contact_area_rms", e.area}, {"frames", e.frames}};
-}
-
-nlohmann::json figures_json(const WindowFigures& f) {
-  return {{"peak_MPa", f.peak_MPa}, {"mean_peak_MPa", f.mean_peak_MPa}, {"mean_MPa", f.mean_MPa},
-          {"area_mm2", f.area_mm2}, {"frames", f.frames}};
-}
-
 std::string number(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -333,17 +323,7 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   }
   models::write_contact_law_file(out / "contact_law.toml", law);
 
-  io::Table t;
-  t.columns = {"gait_pct", "deformable_peak_MPa", "deformable_mean_MPa", "deformable_area_mm2",
-               "rigid_peak_MPa", "rigid_mean_MPa", "rigid_area_mm2", "calibrated_peak_MPa",
-               "calibrated_mean_MPa", "calibrated_area_mm2"};
-  for (size_t i = 0; i < deformable.gait_pct.size(); ++i) {
-    t.add_row({deformable.gait_pct[i], deformable.peak_MPa[i], deformable.mean_MPa[i],
-               deformable.area_mm2[i], specified.peak_MPa[i], specified.mean_MPa[i],
-               specified.area_mm2[i], calibrated.peak_MPa[i], calibrated.mean_MPa[i],
-               calibrated.area_mm2[i]});
-  }
-  io::write_csv(out / "comparison.csv", t);
+  write_pressure_comparison(out / "comparison.csv", deformable, specified, calibrated);
 
   nlohmann::json s;
   s["material"] = law.material;
@@ -368,12 +348,12 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
        {std::tuple{"fit_window_0_30pct", kFitLo, kFitHi},
         std::tuple{"held_out_30_60pct", kHeldLo, kHeldHi},
         std::tuple{"stance_0_60pct", kFitLo, kHeldHi}}) {
-    s[name]["rigid_as_specified"] = errors_json(compare_traces(specified, deformable, lo_pct, hi_pct));
-    s[name]["rigid_calibrated"] = errors_json(compare_traces(calibrated, deformable, lo_pct, hi_pct));
+    s[name]["rigid_as_specified"] = trace_errors_json(compare_traces(specified, deformable, lo_pct, hi_pct));
+    s[name]["rigid_calibrated"] = trace_errors_json(compare_traces(calibrated, deformable, lo_pct, hi_pct));
   }
-  s["stance_figures"] = {{"deformable", figures_json(st_def)},
-                         {"rigid_as_specified", figures_json(st_spec)},
-                         {"rigid_calibrated", figures_json(st_cal)}};
+  s["stance_figures"] = {{"deformable", window_figures_json(st_def)},
+                         {"rigid_as_specified", window_figures_json(st_spec)},
+                         {"rigid_calibrated", window_figures_json(st_cal)}};
   s["seconds_per_cycle"] = {{"deformable", deformable_seconds},
                             {"rigid_as_specified", rigid_seconds},
                             {"rigid_calibrated", calibrated_seconds}};

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "engine/errors.h"
+#include "engine/io/table.h"
 
 namespace kneesim::run {
 namespace {
@@ -106,6 +107,35 @@ WindowFigures calc_window_figures(const PressureTrace& t, double lo, double hi) 
     f.area_mm2 /= f.frames;
   }
   return f;
+}
+
+nlohmann::json trace_errors_json(const TraceErrors& e) {
+  return {{"peak_pressure_rms", e.peak}, {"mean_pressure_rms", e.mean},
+          {"contact_area_rms", e.area}, {"frames", e.frames}};
+}
+
+nlohmann::json window_figures_json(const WindowFigures& f) {
+  return {{"peak_MPa", f.peak_MPa}, {"mean_peak_MPa", f.mean_peak_MPa}, {"mean_MPa", f.mean_MPa},
+          {"area_mm2", f.area_mm2}, {"frames", f.frames}};
+}
+
+void write_pressure_comparison(const std::filesystem::path& csv, const PressureTrace& deformable,
+                               const PressureTrace& specified, const PressureTrace& calibrated) {
+  if (specified.gait_pct.size() != deformable.gait_pct.size() ||
+      calibrated.gait_pct.size() != deformable.gait_pct.size()) {
+    throw std::invalid_argument("write_pressure_comparison: the traces hold different frames");
+  }
+  io::Table t;
+  t.columns = {"gait_pct", "deformable_peak_MPa", "deformable_mean_MPa", "deformable_area_mm2",
+               "rigid_peak_MPa", "rigid_mean_MPa", "rigid_area_mm2", "calibrated_peak_MPa",
+               "calibrated_mean_MPa", "calibrated_area_mm2"};
+  for (size_t i = 0; i < deformable.gait_pct.size(); ++i) {
+    t.add_row({deformable.gait_pct[i], deformable.peak_MPa[i], deformable.mean_MPa[i],
+               deformable.area_mm2[i], specified.peak_MPa[i], specified.mean_MPa[i],
+               specified.area_mm2[i], calibrated.peak_MPa[i], calibrated.mean_MPa[i],
+               calibrated.area_mm2[i]});
+  }
+  io::write_csv(csv, t);
 }
 
 double minimize_log_golden(const std::function<double(double)>& f, double lo, double hi,

@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 namespace kneesim::run {
@@ -50,6 +51,15 @@ struct WindowFigures {
   int frames = 0;
 };
 WindowFigures calc_window_figures(const PressureTrace& trace, double lo_pct, double hi_pct);
+
+// the two as summary.json reports them (peak_pressure_rms, ...; peak_MPa, mean_peak_MPa, ...)
+nlohmann::json trace_errors_json(const TraceErrors& errors);
+nlohmann::json window_figures_json(const WindowFigures& figures);
+
+// out/comparison.csv: gait_pct and the deformable_, rigid_ (the law as specified) and
+// calibrated_ peak_MPa, mean_MPa and area_mm2 columns, the three traces' rows matched by index
+void write_pressure_comparison(const std::filesystem::path& csv, const PressureTrace& deformable,
+                               const PressureTrace& specified, const PressureTrace& calibrated);
 
 // golden-section search for the minimum of f(x) over log x in [lo, hi] until the bracket is
 // within `rel_tol` (relative); `evaluations` counts the calls of f. A minimum at a bound is

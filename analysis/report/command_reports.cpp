@@ -38,25 +38,43 @@ void write_particles_report(const std::filesystem::path& out) {
   write_summary_report(out, r, make_command_provenance());
 }
 
+namespace {
+
+// the pressure and area traces of a comparison.csv (calibrate-contact's and check-contact's)
+std::vector<CsvPlot> pressure_comparison_plots(const char* law_label) {
+  std::vector<CsvPlot> plots;
+  for (const auto& [q, title, y] :
+       {std::tuple<const char*, const char*, const char*>{"peak_MPa", "Peak contact pressure",
+                                                          "pressure (MPa)"},
+        {"mean_MPa", "Mean contact pressure", "pressure (MPa)"},
+        {"area_mm2", "Contact area", "area (mm\u00b2)"}}) {
+    const std::string col = q;
+    plots.push_back({"comparison.csv", title, "gait_pct", "gait cycle (%)", y,
+                     {{"deformable_" + col, "deformable"}, {"rigid_" + col, "rigid"},
+                      {"calibrated_" + col, law_label}},
+                     true, 1.0});
+  }
+  return plots;
+}
+
+}  // namespace
+
 void write_calibrate_report(const std::filesystem::path& out, const std::string& material) {
   SummaryReport r;
   r.title = "kneesim calibrate-contact: " + material;
   r.subtitle = "The rigid insert's contact calibrated against the deformable insert: the "
                "numbers of summary.json and the pressure and area traces of comparison.csv.";
-  r.plots = {{"comparison.csv", "Peak contact pressure", "gait_pct", "gait cycle (%)",
-              "pressure (MPa)",
-              {{"deformable_peak_MPa", "deformable"}, {"rigid_peak_MPa", "rigid"},
-               {"calibrated_peak_MPa", "calibrated"}},
-              true, 1.0},
-             {"comparison.csv", "Mean contact pressure", "gait_pct", "gait cycle (%)",
-              "pressure (MPa)",
-              {{"deformable_mean_MPa", "deformable"}, {"rigid_mean_MPa", "rigid"},
-               {"calibrated_mean_MPa", "calibrated"}},
-              true, 1.0},
-             {"comparison.csv", "Contact area", "gait_pct", "gait cycle (%)", "area (mm\u00b2)",
-              {{"deformable_area_mm2", "deformable"}, {"rigid_area_mm2", "rigid"},
-               {"calibrated_area_mm2", "calibrated"}},
-              true, 1.0}};
+  r.plots = pressure_comparison_plots("calibrated");
+  write_summary_report(out, r, make_command_provenance());
+}
+
+void write_check_contact_report(const std::filesystem::path& out, const std::string& material) {
+  SummaryReport r;
+  r.title = "kneesim check-contact: " + material;
+  r.subtitle = "The rigid insert's contact law (the one every command uses; 'rigid' is the law "
+               "as specified) against the deformable insert under the config's load case: the "
+               "numbers of summary.json and the traces of comparison.csv.";
+  r.plots = pressure_comparison_plots("law");
   write_summary_report(out, r, make_command_provenance());
 }
 

@@ -61,7 +61,7 @@ void calibrate(const CalibrateArgs& a) {
                        "default surfaces), so " + key + " would not be used; set the implant's "
                        "geometry and meshes, material.* and deformable.* keys, or "
                        "--reference-edge-mm and --reference-sdf-mm for the reference's "
-                       "surfaces.");
+                       "surfaces (kneesim check-contact judges the law on another load case).");
     }
     from_config += (from_config.empty() ? "" : ", ") + key;
   }

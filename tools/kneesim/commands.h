@@ -121,6 +121,7 @@ void add_bor_command(CLI::App& app);
 void add_diagnose_command(CLI::App& app);
 void add_study_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
+void add_check_contact_command(CLI::App& app);
 void add_config_command(CLI::App& app);
 void add_implant_command(CLI::App& app);
 

@@ -1,5 +1,5 @@
 // The `kneesim` program: sub-commands run, wear, compare, study, diagnose, bor, particles,
-// calibrate-contact, config, implant.
+// calibrate-contact, check-contact, config, implant.
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   kneesim::cli::add_diagnose_command(app);
   kneesim::cli::add_study_command(app);
   kneesim::cli::add_calibrate_command(app);
+  kneesim::cli::add_check_contact_command(app);
   kneesim::cli::add_config_command(app);
   kneesim::cli::add_implant_command(app);
   // an unknown first word is a mistyped command, not a missing one (CLI11 would say "A

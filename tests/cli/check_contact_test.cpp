@@ -1,5 +1,5 @@
-// `kneesim check-contact` end to end on a coarse case (3 mm elements, 3 layers, the iso rig
-// preset, which the shipped UHMWPE law was not fitted on): it writes the comparison, the
+// `kneesim check-contact` end to end on a coarse case (3 mm elements, 3 layers from a config
+// file, the iso rig preset, which the shipped UHMWPE law was not fitted on): it writes the comparison, the
 // summary, the plot and the report and prints the table. References: the shipped law's
 // modulus is 0.35 times the specified one (models/contact_laws/generic_uhmwpe.toml), so under
 // the same load its stance pressures lie below the law as specified's (a softer foundation
@@ -21,9 +21,11 @@ namespace fs = std::filesystem;
 TEST_CASE("kneesim check-contact: the shipped law against the deformable insert on another rig") {
   TempDir tmp;
   const fs::path out = tmp.path / "check";
-  const Result r = run_kneesim({"check-contact", "--out", out.string(), "--set",
-                                "rig.preset=\"iso\"", "--set", "deformable.element_size_mm=3",
-                                "--set", "deformable.layers=3", "--set", "solver.threads=2"},
+  // the coarse mesh from the config file: its [deformable] keys replace the reference mesh's
+  const fs::path config = tmp.path / "coarse.toml";
+  spit(config, "[deformable]\nelement_size_mm = 3.0\nlayers = 3\n[solver]\nthreads = 2\n");
+  const Result r = run_kneesim({"check-contact", config.string(), "--out", out.string(), "--set",
+                                "rig.preset=\"iso\""},
                                tmp.path);
   INFO("stderr: " << r.err);
   REQUIRE(r.exit_code == 0);
@@ -37,6 +39,7 @@ TEST_CASE("kneesim check-contact: the shipped law against the deformable insert 
   CHECK(s["rig_preset"] == "iso");
   CHECK(s["contact_law"]["source"] == "library");
   CHECK(s["deformable_on_reference_mesh"] == false);
+  CHECK(s["deformable_element_size_mm"] == 3.0);
   const double k_law = s["contact_law"]["foundation_modulus_MPa"];
   const double k_spec = s["specified_modulus_MPa"];
   CHECK(k_law < 0.5 * k_spec);

@@ -12,6 +12,7 @@
 #include "analysis/run/gait_run.h"
 #include "engine/errors.h"
 #include "engine/io/output_folder.h"
+#include "engine/io/toml_file.h"
 #include "models/config.h"
 #include "models/contact_law_key.h"
 #include "tools/kneesim/commands.h"
@@ -36,14 +37,9 @@ struct CalibrateArgs {
 
 void calibrate(const CalibrateArgs& a) {
   // the reference mesh: the default [deformable] keys with the laws' reference element size
-  // (what a rigid config's law is looked up under), unless --element-mm or --set say otherwise
-  std::vector<std::string> sets;
-  for (const models::ConfigSetting& s : models::kContactCalibrationReferenceMesh) {
-    sets.push_back(std::string(s.key) + "=" + s.value);
-  }
-  sets.insert(sets.end(), a.sets.begin(), a.sets.end());
-  if (!a.material.empty()) sets.push_back("material.name=\"" + a.material + "\"");
-  if (a.element_mm > 0.0) sets.push_back("deformable.element_size_mm=" + std::to_string(a.element_mm));
+  // (what a rigid config's law is looked up under), unless the config, --element-mm or --set
+  // say otherwise
+  std::vector<std::string> sets = with_reference_mesh(a.config, a.sets, a.material, a.element_mm);
   // the calibration starts from the law as specified: no law is looked up for the config
   sets.push_back("contact.calibration=\"off\"");
   run::ContactCalibrationJob job;
@@ -94,6 +90,20 @@ void calibrate(const CalibrateArgs& a) {
 
 }  // namespace
 
+std::vector<std::string> with_reference_mesh(const std::string& config,
+                                             const std::vector<std::string>& sets,
+                                             const std::string& material, double element_mm) {
+  const io::TomlDocument file = config.empty() ? io::TomlDocument{} : io::read_toml_file(config);
+  std::vector<std::string> out;
+  for (const models::ConfigSetting& s : models::kContactCalibrationReferenceMesh) {
+    if (!file.count(s.key)) out.push_back(std::string(s.key) + "=" + s.value);
+  }
+  out.insert(out.end(), sets.begin(), sets.end());
+  if (!material.empty()) out.push_back("material.name=\"" + material + "\"");
+  if (element_mm > 0.0) out.push_back("deformable.element_size_mm=" + std::to_string(element_mm));
+  return out;
+}
+
 void add_calibrate_command(CLI::App& app) {
   auto args = std::make_shared<CalibrateArgs>();
   CLI::App* cmd = app.add_subcommand(
@@ -102,7 +112,7 @@ void add_calibrate_command(CLI::App& app) {
       "config's implant and material over a gait cycle (Halloran 2005's approach; the "
       "reference load case: the stanmore rig and the shipped gait; the deformable insert: the "
       "footprint-refined mesh of the convergence study: 0.5 mm surface elements where a rigid "
-      "cycle finds contact, 6 layers graded 0.15; or --element-mm and --set deformable.*). Writes DIR/contact_law.toml (a law file: the commands find "
+      "cycle finds contact, 6 layers graded 0.15; or the config's [deformable] keys, --element-mm and --set deformable.*). Writes DIR/contact_law.toml (a law file: the commands find "
       "it by its key when it lies in models/contact_laws/ or the cache, or a config names it as "
       "contact.law_file), DIR/comparison.csv, DIR/summary.json (peak and mean pressure and "
       "contact area errors of the law as specified and calibrated, on the fitting window 0-30 % "

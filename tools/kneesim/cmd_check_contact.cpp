@@ -10,7 +10,6 @@
 #include "analysis/run/check_contact_law.h"
 #include "analysis/run/gait_run.h"
 #include "engine/io/output_folder.h"
-#include "models/contact_law_key.h"
 #include "tools/kneesim/commands.h"
 
 namespace kneesim::cli {
@@ -27,15 +26,9 @@ struct CheckContactArgs {
 };
 
 void check_contact(const CheckContactArgs& a) {
-  // the deformable insert on the calibration's reference mesh unless the config or --set say
-  // otherwise (the config's [deformable] keys and --set come after these)
-  std::vector<std::string> sets;
-  for (const models::ConfigSetting& s : models::kContactCalibrationReferenceMesh) {
-    sets.push_back(std::string(s.key) + "=" + s.value);
-  }
-  sets.insert(sets.end(), a.sets.begin(), a.sets.end());
-  if (!a.material.empty()) sets.push_back("material.name=\"" + a.material + "\"");
-  if (a.element_mm > 0.0) sets.push_back("deformable.element_size_mm=" + std::to_string(a.element_mm));
+  // the deformable insert on the calibration's reference mesh unless the config, --element-mm
+  // or --set say otherwise
+  std::vector<std::string> sets = with_reference_mesh(a.config, a.sets, a.material, a.element_mm);
   run::ContactLawCheckJob job;
   job.config = run::load_run_config(a.config, sets);
   sets.push_back("contact.calibration=\"off\"");
@@ -88,7 +81,7 @@ void add_check_contact_command(CLI::App& app) {
       "calibrated law, fitted on the reference load case: the stanmore rig and the shipped "
       "gait), against the deformable insert under the config's own load case (rig preset, "
       "gait, load scale): one deformable gait cycle on the calibration's reference mesh (or the "
-      "config's and --set deformable.* keys) and the rigid insert with the law and with the law "
+      "config's [deformable] keys, --element-mm and --set deformable.*) and the rigid insert with the law and with the law "
       "as specified. Nothing is fitted. Prints the stance (0-60 %) peak, mean and area of the "
       "three runs and the law's frame errors; writes DIR/comparison.csv, DIR/summary.json, "
       "DIR/calibration.png and DIR/report.html. Minutes: the deformable cycle dominates.");

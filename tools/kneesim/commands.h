@@ -113,6 +113,14 @@ inline std::vector<std::string> with_no_calibrate(std::vector<std::string> sets,
   return sets;
 }
 
+// the --set list of a command whose deformable insert is the contact calibration's reference
+// mesh (models::kContactCalibrationReferenceMesh): each of its keys that the config file does
+// not set, before `sets` (so the file's [deformable] keys and --set deformable.* change it),
+// then the --material and --element-mm shorthands (calibrate-contact, check-contact)
+std::vector<std::string> with_reference_mesh(const std::string& config,
+                                             const std::vector<std::string>& sets,
+                                             const std::string& material, double element_mm);
+
 void add_run_command(CLI::App& app);
 void add_particles_command(CLI::App& app);
 void add_wear_command(CLI::App& app);

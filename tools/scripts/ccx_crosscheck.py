@@ -65,7 +65,7 @@ import time
 
 import numpy as np
 
-FEMUR_LAYER_MM = 0.5       # thickness of the rigid femur's wedge layer
+FEMUR_LAYER_MM = 0.5       # thickness of the rigid femur's wedge layer (at most half a facet)
 CULL_MM = 4.0              # femur triangles within this of a top node are kept
 MEDIAL_Z_BELOW = 0.0       # medial: z < 0 in T (kneesim's convention, engine/insert_solid.cpp)
 
@@ -174,7 +174,10 @@ def write_deck(path, export, instant, penalty, lift_mm, axial_load_N, keep=None,
     X[1, 3] += lift_mm
     fv, ft, fn = femur_patch(export, X, nodes[top_nodes])
     n_ins, e_ins = len(nodes), len(elements)
-    inner = fv - FEMUR_LAYER_MM * fn
+    # the rigid layer no thicker than half a facet: offset along the vertex normals by more
+    # than a fine triangulation's curvature radius at the femur's rounded edges, it inverts
+    edges = np.linalg.norm(fv[ft[:, 1]] - fv[ft[:, 0]], axis=1)
+    inner = fv - min(FEMUR_LAYER_MM, 0.5 * float(np.median(edges))) * fn
     outer_id = n_ins + 1 + np.arange(len(fv))
     inner_id = n_ins + 1 + len(fv) + np.arange(len(fv))
     ref, rot = n_ins + 2 * len(fv) + 1, n_ins + 2 * len(fv) + 2

@@ -1,6 +1,7 @@
 #include "analysis/run/check_contact_law.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "analysis/run/calibrate_contact_law.h"
@@ -86,6 +87,26 @@ nlohmann::json check_contact_law(const ContactLawCheckJob& job) {
   }
   GaitRunJob deformable_run;
   deformable_run.config = job.specified;
+  // on the surfaces the law was fitted against (its provenance: a stiff insert's reference is
+  // on finer facets and distance field than a rigid run's, calibrate-contact's
+  // --reference-edge-mm and --reference-sdf-mm), not the rigid runs' own
+  for (const auto& [key, value] : law.contact_law_resolution.provenance) {
+    const double v = std::strtod(value.c_str(), nullptr);
+    if (!(v > 0.0)) continue;
+    if (key == "reference_edge_length_mm" && law.implant_kind == "generic") {
+      deformable_run.config.edge_length_mm = v;
+    } else if (key == "reference_sdf_spacing_mm") {
+      deformable_run.config.sdf_spacing_mm = v;
+    }
+  }
+  const bool own_surfaces = deformable_run.config.edge_length_mm == law.edge_length_mm &&
+                            deformable_run.config.sdf_spacing_mm == law.sdf_spacing_mm;
+  if (!own_surfaces && !job.quiet) {
+    std::fprintf(stderr, "check-contact: the deformable insert on the law's reference surfaces: "
+                 "%g mm facets, distance field %g mm (the rigid runs: %g mm, %g mm)\n",
+                 deformable_run.config.edge_length_mm, deformable_run.config.sdf_spacing_mm,
+                 law.edge_length_mm, law.sdf_spacing_mm);
+  }
   deformable_run.config.insert_kind = "deformable";
   deformable_run.config.cycles = 1;
   models::resolve_contact_law(deformable_run.config);  // "unused"
@@ -111,6 +132,12 @@ nlohmann::json check_contact_law(const ContactLawCheckJob& job) {
   s["deformable_element_size_mm"] = job.specified.deformable_element_size_mm;
   s["deformable_refine"] = job.specified.deformable_refine;
   s["deformable_on_reference_mesh"] = reference_mesh;
+  s["deformable_sdf_spacing_mm"] = deformable_run.config.sdf_spacing_mm;
+  s["rigid_sdf_spacing_mm"] = law.sdf_spacing_mm;
+  if (law.implant_kind == "generic") {
+    s["deformable_implant_edge_length_mm"] = deformable_run.config.edge_length_mm;
+    s["rigid_implant_edge_length_mm"] = law.edge_length_mm;
+  }
   for (const auto& [name, lo, hi] : {std::tuple{"fit_window_0_30pct", kFitLo, kFitHi},
                                      std::tuple{"held_out_30_60pct", kHeldLo, kHeldHi},
                                      std::tuple{"stance_0_60pct", kContactCheckStanceLo,

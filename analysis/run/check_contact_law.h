@@ -6,7 +6,8 @@
 // case of the same implant, material and surfaces. docs/validation.md shows how far it carries
 // to other rig presets and loads; a user whose rig, gait or load differs from those checks it
 // on their own: one deformable gait cycle (on the calibration's reference mesh unless the
-// config sets [deformable] keys), the rigid insert with the law every command uses, and the
+// config sets [deformable] keys, and on the surfaces the law's provenance names as its
+// reference's), the rigid insert with the law every command uses, and the
 // rigid insert with the law as specified, compared frame by frame over stance with the
 // calibration's error measure (analysis/run/contact_calibration.h). Nothing is fitted.
 #pragma once

@@ -40,6 +40,10 @@ TEST_CASE("kneesim check-contact: the shipped law against the deformable insert 
   CHECK(s["contact_law"]["source"] == "library");
   CHECK(s["deformable_on_reference_mesh"] == false);
   CHECK(s["deformable_element_size_mm"] == 3.0);
+  // the shipped UHMWPE law was fitted on the rigid runs' own surfaces (its provenance names no
+  // finer ones), so the deformable insert runs on them too
+  CHECK(s["deformable_sdf_spacing_mm"] == s["rigid_sdf_spacing_mm"]);
+  CHECK(s["deformable_implant_edge_length_mm"] == s["rigid_implant_edge_length_mm"]);
   const double k_law = s["contact_law"]["foundation_modulus_MPa"];
   const double k_spec = s["specified_modulus_MPa"];
   CHECK(k_law < 0.5 * k_spec);

@@ -9,6 +9,9 @@ at an eighth of their width, where the script's 16 samples per quad side fall ex
 - the nodes' area is the tributary area of the seven columns x = 0 ... 3.0 mm, 3.25 x 10 =
   32.5 mm² (the band a quarter of an element wide beyond the line, here, on one side);
 - peak_section.py puts the peak at x = 0 (the deepest penetration) with the gap -s x0.
+And ccx_patch_average.py's area-weighted neighbourhood mean on the same grid: a uniform field
+is its own mean at any radius; a single loaded interior node is its own peak for a radius below
+the spacing and a fifth of it at the spacing (itself and its four neighbours, equal areas).
 Run by ctest (tests/CMakeLists.txt) with the source tree as the first argument."""
 import json
 import os
@@ -56,6 +59,26 @@ def make_export():
     }
 
 
+def check_patch_average():
+    import importlib.util
+    import numpy as np
+    spec = importlib.util.spec_from_file_location(
+        "ccx_patch_average", os.path.join(SOURCE, "tools", "scripts", "ccx_patch_average.py"))
+    m = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(m)
+    xz = np.array([[i * H, j * H] for j in range(N + 1) for i in range(N + 1)])
+    area = np.array([H * H * (0.5 if i in (0, N) else 1.0) * (0.5 if j in (0, N) else 1.0)
+                     for j in range(N + 1) for i in range(N + 1)])
+    ok = check("uniform field, 1.5 mm", m.averaged_peak(np.full(len(xz), 7.0), xz, area, 1.5),
+               7.0, 1e-12)
+    spike = np.zeros(len(xz))
+    spike[10 * (N + 1) + 10] = 20.0
+    ok &= check("spike, radius below the spacing", m.averaged_peak(spike, xz, area, 0.4 * H),
+                20.0, 1e-12)
+    ok &= check("spike, radius at the spacing", m.averaged_peak(spike, xz, area, H), 4.0, 1e-12)
+    return ok
+
+
 def run(script, path):
     out = subprocess.run(["/usr/bin/python3", os.path.join(SOURCE, "tools", "scripts", script),
                           path], capture_output=True, text=True)
@@ -90,6 +113,7 @@ def main():
         ok &= check("peak node x mm", float(head[head.index("x") + 1].rstrip(",")), 0.0, 1e-9)
         first = lines[2].split()  # along z through the peak: coordinate, femur y, insert y, gap
         ok &= check("gap at the peak mm", float(first[3]), -SLOPE * X0, 1e-3)
+        ok &= check_patch_average()
         sys.exit(0 if ok else 1)
 
 

@@ -23,7 +23,6 @@
 namespace kneesim::run {
 namespace {
 
-constexpr double kFitLo = 0.0, kFitHi = 30.0, kHeldLo = 30.0, kHeldHi = 60.0;
 constexpr double kSearchLo = 0.01, kSearchHi = 10.0;  // K_eff / K
 constexpr double kExponentLo = 0.3, kExponentHi = 1.5;  // n of p = K_eff g^n
 
@@ -220,7 +219,7 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
     minimize_log_golden(
         [&](double k) {
           const auto t = rigid_run(k, n, out / "fit", nullptr);
-          const auto e = compare_traces(t, deformable, kFitLo, kFitHi);
+          const auto e = compare_traces(t, deformable, kFitWindowLo, kFitWindowHi);
           if (!job.quiet) {
             std::fprintf(stderr, "calibrate-contact: n %.3f, K %.1f MPa: peak %.3f, mean %.3f "
                          "(RMS, 0-30 %%)\n", n, k, e.peak, e.mean);
@@ -262,11 +261,11 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   const PressureTrace calibrated =
       rigid_run(k_fit, n_fit, out / "rigid_calibrated", &calibrated_seconds);
 
-  const TraceErrors held_spec = compare_traces(specified, deformable, kHeldLo, kHeldHi);
-  const TraceErrors held_cal = compare_traces(calibrated, deformable, kHeldLo, kHeldHi);
-  const WindowFigures st_def = calc_window_figures(deformable, kFitLo, kHeldHi);
-  const WindowFigures st_spec = calc_window_figures(specified, kFitLo, kHeldHi);
-  const WindowFigures st_cal = calc_window_figures(calibrated, kFitLo, kHeldHi);
+  const TraceErrors held_spec = compare_traces(specified, deformable, kHeldOutLo, kHeldOutHi);
+  const TraceErrors held_cal = compare_traces(calibrated, deformable, kHeldOutLo, kHeldOutHi);
+  const WindowFigures st_def = calc_window_figures(deformable, kStanceLo, kStanceHi);
+  const WindowFigures st_spec = calc_window_figures(specified, kStanceLo, kStanceHi);
+  const WindowFigures st_cal = calc_window_figures(calibrated, kStanceLo, kStanceHi);
 
   models::CalibratedContactLaw law;
   law.material = base.material.name;
@@ -344,13 +343,8 @@ ContactCalibrationReport calibrate_contact_law(const ContactCalibrationJob& job)
   s["reference_sdf_spacing_mm"] = reference.sdf_spacing_mm;
   s["deformable_elements"] = deformable_elements;
   s["deformable_element_mm"] = base.deformable_element_size_mm;
-  for (const auto& [name, lo_pct, hi_pct] :
-       {std::tuple{"fit_window_0_30pct", kFitLo, kFitHi},
-        std::tuple{"held_out_30_60pct", kHeldLo, kHeldHi},
-        std::tuple{"stance_0_60pct", kFitLo, kHeldHi}}) {
-    s[name]["rigid_as_specified"] = trace_errors_json(compare_traces(specified, deformable, lo_pct, hi_pct));
-    s[name]["rigid_calibrated"] = trace_errors_json(compare_traces(calibrated, deformable, lo_pct, hi_pct));
-  }
+  add_window_errors(s, "rigid_as_specified", specified, deformable);
+  add_window_errors(s, "rigid_calibrated", calibrated, deformable);
   s["stance_figures"] = {{"deformable", window_figures_json(st_def)},
                          {"rigid_as_specified", window_figures_json(st_spec)},
                          {"rigid_calibrated", window_figures_json(st_cal)}};

@@ -18,9 +18,6 @@
 namespace kneesim::run {
 namespace {
 
-// the calibration's windows (calibrate_contact_law.h): fitted on 0-30 %, held out on 30-60 %
-constexpr double kFitLo = 0.0, kFitHi = 30.0, kHeldLo = 30.0, kHeldHi = 60.0;
-
 struct RigidRun {
   PressureTrace trace;
   double seconds_per_cycle = 0.0;
@@ -138,20 +135,14 @@ nlohmann::json check_contact_law(const ContactLawCheckJob& job) {
     s["deformable_implant_edge_length_mm"] = deformable_run.config.edge_length_mm;
     s["rigid_implant_edge_length_mm"] = law.edge_length_mm;
   }
-  for (const auto& [name, lo, hi] : {std::tuple{"fit_window_0_30pct", kFitLo, kFitHi},
-                                     std::tuple{"held_out_30_60pct", kHeldLo, kHeldHi},
-                                     std::tuple{"stance_0_60pct", kContactCheckStanceLo,
-                                                kContactCheckStanceHi}}) {
-    s[name]["rigid_as_specified"] =
-        trace_errors_json(compare_traces(specified.trace, deformable, lo, hi));
-    s[name]["rigid_law"] = trace_errors_json(compare_traces(with_law.trace, deformable, lo, hi));
-  }
+  add_window_errors(s, "rigid_as_specified", specified.trace, deformable);
+  add_window_errors(s, "rigid_law", with_law.trace, deformable);
   const WindowFigures fd =
-      calc_window_figures(deformable, kContactCheckStanceLo, kContactCheckStanceHi);
+      calc_window_figures(deformable, kStanceLo, kStanceHi);
   const WindowFigures fl =
-      calc_window_figures(with_law.trace, kContactCheckStanceLo, kContactCheckStanceHi);
+      calc_window_figures(with_law.trace, kStanceLo, kStanceHi);
   const WindowFigures fs_ =
-      calc_window_figures(specified.trace, kContactCheckStanceLo, kContactCheckStanceHi);
+      calc_window_figures(specified.trace, kStanceLo, kStanceHi);
   s["stance_figures"] = {{"deformable", window_figures_json(fd)},
                          {"rigid_law", window_figures_json(fl)},
                          {"rigid_as_specified", window_figures_json(fs_)}};

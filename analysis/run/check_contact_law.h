@@ -31,9 +31,6 @@ struct ContactLawCheckJob {
   bool quiet = false;         // no progress lines on stderr
 };
 
-// the stance window of the check's figures (the calibration's 0-60 %)
-inline constexpr double kContactCheckStanceLo = 0.0, kContactCheckStanceHi = 60.0;
-
 // runs the check; writes out/comparison.csv (the three traces, as calibrate-contact's),
 // out/summary.json (the law, the stance figures of the three runs, the frame errors of both
 // laws over 0-30 %, 30-60 % and stance, the law's stance peak, mean and area differences) and

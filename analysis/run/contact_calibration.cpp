@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include "engine/errors.h"
 #include "engine/io/table.h"
@@ -117,6 +118,15 @@ nlohmann::json trace_errors_json(const TraceErrors& e) {
 nlohmann::json window_figures_json(const WindowFigures& f) {
   return {{"peak_MPa", f.peak_MPa}, {"mean_peak_MPa", f.mean_peak_MPa}, {"mean_MPa", f.mean_MPa},
           {"area_mm2", f.area_mm2}, {"frames", f.frames}};
+}
+
+void add_window_errors(nlohmann::json& summary, const char* rigid_key, const PressureTrace& rigid,
+                       const PressureTrace& deformable) {
+  for (const auto& [name, lo, hi] : {std::tuple{"fit_window_0_30pct", kFitWindowLo, kFitWindowHi},
+                                     std::tuple{"held_out_30_60pct", kHeldOutLo, kHeldOutHi},
+                                     std::tuple{"stance_0_60pct", kStanceLo, kStanceHi}}) {
+    summary[name][rigid_key] = trace_errors_json(compare_traces(rigid, deformable, lo, hi));
+  }
 }
 
 void write_pressure_comparison(const std::filesystem::path& csv, const PressureTrace& deformable,

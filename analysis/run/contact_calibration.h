@@ -56,6 +56,16 @@ WindowFigures calc_window_figures(const PressureTrace& trace, double lo_pct, dou
 nlohmann::json trace_errors_json(const TraceErrors& errors);
 nlohmann::json window_figures_json(const WindowFigures& figures);
 
+// the calibration's windows of the cycle [%]: fitted on 0-30, held out on 30-60, stance 0-60
+inline constexpr double kFitWindowLo = 0.0, kFitWindowHi = 30.0;
+inline constexpr double kHeldOutLo = 30.0, kHeldOutHi = 60.0;
+inline constexpr double kStanceLo = kFitWindowLo, kStanceHi = kHeldOutHi;
+
+// summary[w][rigid_key] = the errors of `rigid` against `deformable` over each window w:
+// fit_window_0_30pct, held_out_30_60pct, stance_0_60pct
+void add_window_errors(nlohmann::json& summary, const char* rigid_key, const PressureTrace& rigid,
+                       const PressureTrace& deformable);
+
 // out/comparison.csv: gait_pct and the deformable_, rigid_ (the law as specified) and
 // calibrated_ peak_MPa, mean_MPa and area_mm2 columns, the three traces' rows matched by index
 void write_pressure_comparison(const std::filesystem::path& csv, const PressureTrace& deformable,

@@ -137,19 +137,16 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   const ModelFit& none = res.candidates.front();
   res.selected = 0;
   for (auto& m : res.candidates) m.at_bound = find_params_at_bound(m.specs, m.params);
+  std::vector<int> supported;
   for (size_t i = 1; i < res.candidates.size(); ++i) {
     ModelFit& m = res.candidates[i];
     m.passes_gates = passes_gates(m, none, options);
     // a gain the trivial predictor also achieves is not a finding: the same held-out margin
     // against it (binds only where the baseline predicts worse than the trivial predictor)
     m.beats_trivial = beats_trivial(m, res.trivial, options);
-    const bool better = res.selected == 0 ||
-                        (options.rank_by_aicc ? m.aicc < res.extended().aicc
-                                              : m.heldout_rmse < res.extended().heldout_rmse);
-    if (m.passes_gates && m.beats_trivial && m.at_bound.empty() && better) {
-      res.selected = static_cast<int>(i);
-    }
+    if (m.passes_gates && m.beats_trivial && m.at_bound.empty()) supported.push_back(static_cast<int>(i));
   }
+  select_among_supported(res, supported, options);
   bootstrap(pb, res.candidates[static_cast<size_t>(res.selected)],
             noises[static_cast<size_t>(res.selected)], options);
   res.gain = (res.baseline.heldout_rmse > 0.0)
@@ -163,6 +160,35 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
   }
   res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return res;
+}
+
+void select_among_supported(DiagnosisResult& res, const std::vector<int>& supported,
+                            const DiagnosisOptions& options) {
+  res.selected = 0;
+  res.tied_with = -1;
+  if (supported.empty()) return;
+  const auto& c = res.candidates;
+  auto at = [&](int i) -> const ModelFit& { return c[static_cast<size_t>(i)]; };
+  if (!options.rank_by_aicc) {
+    res.selected = *std::min_element(supported.begin(), supported.end(), [&](int a, int b) {
+      return at(a).heldout_rmse < at(b).heldout_rmse;
+    });
+    return;
+  }
+  // the lowest AICc, then within tie_aicc of it the lowest held-out RMSE (candidate order
+  // breaks exact ties, so the answer is deterministic)
+  const int lowest = *std::min_element(supported.begin(), supported.end(),
+                                       [&](int a, int b) { return at(a).aicc < at(b).aicc; });
+  std::vector<int> band;
+  for (int i : supported) {
+    if (at(i).aicc <= at(lowest).aicc + options.tie_aicc) band.push_back(i);
+  }
+  res.selected = *std::min_element(band.begin(), band.end(), [&](int a, int b) {
+    return at(a).heldout_rmse < at(b).heldout_rmse;
+  });
+  for (int i : band) {  // the runner-up: the lowest AICc of the others in the band
+    if (i != res.selected && (res.tied_with < 0 || at(i).aicc < at(res.tied_with).aicc)) res.tied_with = i;
+  }
 }
 
 bool passes_gates(const ModelFit& m, const ModelFit& none, const DiagnosisOptions& options) {

@@ -65,6 +65,10 @@ struct DiagnosisOptions {
   bool trivial_gate = true;         // also require the held-out drop against the trivial predictor
   // rank the supported candidates by AICc (true) or by held-out RMSE (false)
   bool rank_by_aicc = true;
+  // supported candidates whose AICc lies within this of the lowest are not told apart by it
+  // (Burnham & Anderson: a difference below 2 is no evidence for either); the lower held-out
+  // RMSE names one of them [-]
+  double tie_aicc = 2.0;
   std::string noise_model = "instrument";     // error model: white, correlated, instrument
   std::map<std::string, double> noise_params; // error-model keys (priors, switches)
   int detection_replicates = 0;     // replicates per candidate of the detection limits, 0: none
@@ -141,6 +145,9 @@ struct DiagnosisResult {
   ModelFit trivial;                 // the measured mean of each quantity, or the case's own
   std::vector<ModelFit> candidates; // "none" first, then the case's candidates
   int selected = 0;                 // index into candidates
+  // a supported candidate within tie_aicc of the named one's AICc (the data's likelihood does
+  // not tell the two apart; the held-out RMSE named `selected`), or -1
+  int tied_with = -1;
   double gain = 0.0;                // 1 - heldout extended / heldout baseline [-]
   double gain_vs_trivial = 0.0;     // 1 - heldout extended / heldout trivial [-]
   double seconds = 0.0;             // wall time [s]
@@ -157,6 +164,11 @@ std::vector<int> find_params_at_bound(const std::vector<ParamSpec>& specs,
 // the selection gates: the AICc drop and the held-out drop against "none"; the held-out drop
 // against the trivial predictor
 bool passes_gates(const ModelFit& m, const ModelFit& none, const DiagnosisOptions& options);
+// names one of the supported candidates (indices into res.candidates that passed every gate,
+// with no parameter at a search bound): the lowest AICc, or within options.tie_aicc of it the
+// lowest held-out RMSE; sets res.selected (0, none, when the list is empty) and res.tied_with
+void select_among_supported(DiagnosisResult& res, const std::vector<int>& supported,
+                            const DiagnosisOptions& options);
 bool beats_trivial(const ModelFit& m, const ModelFit& trivial, const DiagnosisOptions& options);
 
 // runs the diagnosis; throws InputError when the data have fewer measurements than a

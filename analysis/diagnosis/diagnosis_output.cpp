@@ -26,7 +26,18 @@ std::string write_diagnosis(const DiagnosisCase& c, const DiagnosisResult& r,
                 c.name.c_str(), effect.c_str(), r.baseline.heldout_rmse,
                 r.extended().heldout_rmse, r.rmse_unit.c_str(), r.gain,
                 r.trivial.heldout_rmse, r.gain_vs_trivial, r.seconds, out.string().c_str());
-  return line;
+  std::string console = line;
+  if (r.tied_with >= 0) {
+    const ModelFit& t = r.candidates[static_cast<size_t>(r.tied_with)];
+    std::snprintf(line, sizeof line,
+                  "  %s fits as well (AICc %+.1f against the named one's, within 2: the data's "
+                  "likelihood does not tell them apart); named by the lower held-out RMSE (%.4g "
+                  "against %.4g)\n",
+                  std::string(effect_name(t.effect)).c_str(), t.aicc - r.extended().aicc,
+                  r.extended().heldout_rmse, t.heldout_rmse);
+    console += line;
+  }
+  return console;
 }
 
 void append_report(const std::filesystem::path& out, const std::string& section) {

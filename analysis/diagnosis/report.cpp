@@ -34,9 +34,15 @@ std::string at_bound_text(const ModelFit& m) {
   return out;
 }
 
-std::string verdict(const ModelFit& m, bool selected) {
+std::string verdict(const DiagnosisResult& r, size_t i) {
+  const ModelFit& m = r.candidates[i];
   if (m.effect == Effect::none) return "reference";
-  if (selected) return "named";
+  if (static_cast<int>(i) == r.selected) {
+    return r.tied_with < 0 ? "named"
+                           : "named (AICc within " + num(r.extended().aicc - r.candidates[static_cast<size_t>(r.tied_with)].aicc, "%+.1f") +
+                                 " of `" + std::string(effect_name(r.candidates[static_cast<size_t>(r.tied_with)].effect)) +
+                                 "`: the lower held-out RMSE decided)";
+  }
   if (!m.at_bound.empty()) {
     return std::string(m.passes_gates ? "passed the gates but " : "") + "at a search bound: " +
            at_bound_text(m) + "; not named";
@@ -44,7 +50,10 @@ std::string verdict(const ModelFit& m, bool selected) {
   if (m.passes_gates && !m.beats_trivial) {
     return "passed the gates against none but not against the trivial predictor: not named";
   }
-  return m.passes_gates ? "supported, higher held-out RMSE than the named one" : "not supported";
+  if (!m.passes_gates) return "not supported";
+  return static_cast<int>(i) == r.tied_with
+             ? "supported, as likely as the named one (AICc within the tie band) but a higher held-out RMSE"
+             : "supported, higher AICc than the named one";
 }
 
 Eigen::VectorXd baseline_of(const DiagnosisCase& c, const ModelFit& m) {
@@ -155,6 +164,9 @@ nlohmann::json diagnosis_json(const DiagnosisCase& c, const DiagnosisResult& r) 
                   {"heldout_rmse", r.trivial.heldout_rmse}};
   j["gain"] = r.gain;
   j["gain_vs_trivial"] = r.gain_vs_trivial;
+  // a supported candidate as likely as the named one (AICc within the tie band), or null
+  j["tied_with"] = r.tied_with < 0 ? nlohmann::json(nullptr)
+                                   : nlohmann::json(std::string(effect_name(r.candidates[static_cast<size_t>(r.tied_with)].effect)));
   j["baseline_gain_vs_trivial"] =
       r.trivial.heldout_rmse > 0.0 ? 1.0 - r.baseline.heldout_rmse / r.trivial.heldout_rmse : 0.0;
   j["candidates"] = nlohmann::json::array();
@@ -172,7 +184,7 @@ nlohmann::json diagnosis_json(const DiagnosisCase& c, const DiagnosisResult& r) 
                                {"passes_gates", m.passes_gates},
                                {"beats_trivial", m.beats_trivial},
                                {"params_at_search_bound", bound},
-                               {"verdict", verdict(m, static_cast<int>(i) == r.selected)}});
+                               {"verdict", verdict(r, i)}});
   }
   // the error model and its fit
   {
@@ -325,13 +337,14 @@ std::string diagnosis_markdown(const DiagnosisCase& c, const DiagnosisResult& r)
     }
     md += "| " + std::string(effect_name(m.effect)) + " | " + num(m.heldout_rmse) + " | " +
           num(m.aicc, "%.1f") + " | " + num(m.aicc - r.candidates.front().aicc, "%.1f") + " | " +
-          ps + " | " + verdict(m, static_cast<int>(ci) == r.selected) + " |\n";
+          ps + " | " + verdict(r, ci) + " |\n";
   }
   md += "\nSelection: a candidate must lower AICc by more than the threshold and the held-out "
         "RMSE by more than the threshold fraction against `none` (the baseline refitted by "
         "least squares), with no parameter at a search bound; among those the lowest AICc wins "
         "(the likelihood of all measurements under the error model; the held-out error of a "
-        "few folds is a gate, not a ranking). ";
+        "few folds is a gate, not a ranking), except that candidates within 2 of the lowest "
+        "AICc are not told apart by it and the lower held-out RMSE names one of them. ";
   md += error_model_markdown(r);
   md += detection_markdown(r);
   md += "\n";

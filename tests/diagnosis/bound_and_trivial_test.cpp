@@ -167,3 +167,87 @@ TEST_CASE("a candidate must beat the case's trivial predictor by the held-out ma
   no_bootstrap.bootstrap = 0;
   CHECK(diagnose(line_case(0.2, 10.0, 0.3), no_bootstrap).effect() == Effect::running_in);
 }
+
+TEST_CASE("among supported candidates: the lowest AICc, or within 2 of it the lower held-out RMSE") {
+  // reference: the rule's definition (diagnose.h, select_among_supported); an AICc difference
+  // below 2 is no evidence for either model (Burnham & Anderson 2002, section 2.6)
+  auto result = [](std::vector<std::pair<double, double>> aicc_heldout) {
+    DiagnosisResult r;
+    r.candidates.resize(aicc_heldout.size() + 1);  // [0] is none
+    for (size_t i = 0; i < aicc_heldout.size(); ++i) {
+      r.candidates[i + 1].aicc = aicc_heldout[i].first;
+      r.candidates[i + 1].heldout_rmse = aicc_heldout[i].second;
+    }
+    return r;
+  };
+  DiagnosisOptions opt;
+  {  // 3 apart: the lowest AICc wins even with the worse held-out RMSE
+    DiagnosisResult r = result({{-30.0, 0.8}, {-27.0, 0.5}});
+    select_among_supported(r, {1, 2}, opt);
+    CHECK(r.selected == 1);
+    CHECK(r.tied_with == -1);
+  }
+  {  // 0.5 apart (the forces record of a 2.9 mm load-line shift: -25.4 / 0.697 against -24.9 / 0.580)
+    DiagnosisResult r = result({{-25.4, 0.697}, {-24.9, 0.580}});
+    select_among_supported(r, {1, 2}, opt);
+    CHECK(r.selected == 2);
+    CHECK(r.tied_with == 1);
+  }
+  {  // within 2 but the lowest AICc also predicts best: named, the other reported as tied
+    DiagnosisResult r = result({{-25.4, 0.5}, {-24.0, 0.6}, {-10.0, 0.1}});
+    select_among_supported(r, {1, 2}, opt);  // the third did not pass the gates
+    CHECK(r.selected == 1);
+    CHECK(r.tied_with == 2);
+  }
+  {  // only the supported ones count, and none supported names none
+    DiagnosisResult r = result({{-25.4, 0.9}, {-25.0, 0.2}});
+    select_among_supported(r, {1}, opt);
+    CHECK(r.selected == 1);
+    CHECK(r.tied_with == -1);
+    select_among_supported(r, {}, opt);
+    CHECK(r.selected == 0);
+    CHECK(r.tied_with == -1);
+  }
+  {  // a zero band is the plain AICc ranking
+    DiagnosisResult r = result({{-25.4, 0.697}, {-24.9, 0.580}});
+    opt.tie_aicc = 0.0;
+    select_among_supported(r, {1, 2}, opt);
+    CHECK(r.selected == 1);
+  }
+}
+
+TEST_CASE("two candidates the likelihood cannot tell apart: named by held-out RMSE, the other reported") {
+  // y = 3 + 0.2 x + noise; running_in stands for the slope s x, incubation for s x^1.03 (the
+  // framework does not look at the effects' meaning): nearly the same curve, so their AICc
+  // differ by far less than 2. Reference: the tie rule of select_among_supported (diagnose.h).
+  DiagnosisCase c = line_case(0.2, 10.0, 0.3);
+  c.candidates = {Effect::running_in, Effect::incubation};
+  auto rows = c.measured.rows;
+  c.predict = [rows](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep,
+                     const std::vector<int>& idx) {
+    Eigen::VectorXd v(static_cast<Eigen::Index>(idx.size()));
+    for (size_t i = 0; i < idx.size(); ++i) {
+      const double x = rows[static_cast<size_t>(idx[i])].x;
+      const double shape = e == Effect::incubation ? std::pow(x, 1.03) : x;
+      v[static_cast<Eigen::Index>(i)] = b[0] + (e == Effect::none ? 0.0 : ep[0] * shape);
+    }
+    return v;
+  };
+  DiagnosisOptions opt;
+  opt.bootstrap = 0;
+  const DiagnosisResult r = diagnose(c, opt);
+  REQUIRE(r.candidates.size() == 3);
+  const ModelFit& a = r.candidates[1];
+  const ModelFit& b = r.candidates[2];
+  INFO("AICc " << a.aicc << " / " << b.aicc << ", held out " << a.heldout_rmse << " / " << b.heldout_rmse);
+  REQUIRE(std::abs(a.aicc - b.aicc) < 2.0);
+  REQUIRE(a.heldout_rmse != b.heldout_rmse);
+  const int better = a.heldout_rmse < b.heldout_rmse ? 1 : 2;
+  CHECK(r.selected == better);
+  CHECK(r.tied_with == 3 - better);
+  const auto j = diagnosis_json(c, r);
+  CHECK(j["tied_with"].get<std::string>() == std::string(effect_name(r.candidates[static_cast<size_t>(3 - better)].effect)));
+  CHECK(j["candidates"][better]["verdict"].get<std::string>().rfind("named (AICc within", 0) == 0);
+  CHECK(j["candidates"][3 - better]["verdict"].get<std::string>().find("as likely as the named one") != std::string::npos);
+  CHECK(diagnosis_markdown(c, r).find("within 2 of the lowest AICc") != std::string::npos);
+}

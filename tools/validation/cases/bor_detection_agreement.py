@@ -3,7 +3,14 @@ effects start being named: hidden effects at several multiples of the set's nois
 random-walk weighings (not the fit's error model; tests/diagnosis/hidden_effect.h), 10 seeds
 per size, and the detection limits (20 replicates) reported for clean sets of the same
 design, as signal / noise ratios."""
+import importlib.util
+import os
 import re
+
+_spec = importlib.util.spec_from_file_location(
+    "kneesim_tallies", os.path.join(os.path.dirname(__file__), "_tallies.py"))
+T = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(T)
 
 TITLE = "Block-on-ring: reported detection limits against the hidden-effect onset"
 LONG = True  # about 200 diagnoses and 4 with detection limits: 5-15 minutes
@@ -17,18 +24,6 @@ def tool(v, env):
     rec = " ".join(f"{k}={val}" for k, val in env.items())
     return v.tool("tests/diagnosis/test_diagnosis_long", ["-tc=correlated sweep", "--no-skip"],
                   record=rec + " " + RECORD, env=env)
-
-
-def onset(fractions):
-    """the ratio at which the named fraction first reaches 0.8 (linear between sizes)"""
-    prev = None
-    for r, f in fractions:
-        if f >= 0.8:
-            if prev is None or prev[1] >= 0.8:
-                return r
-            return prev[0] + (0.8 - prev[1]) / (f - prev[1]) * (r - prev[0])
-        prev = (r, f)
-    return float("nan")
 
 
 def run(v):
@@ -45,7 +40,7 @@ def run(v):
         if d == "+":
             lim.setdefault(eff, []).append(float(ratio))
     for eff in EFFECTS:
-        o = onset(sorted(fr.get(eff, [])))
+        o = T.onset(sorted(fr.get(eff, [])))
         m = sum(lim[eff]) / len(lim[eff])
         v.figure(f"{eff}_onset", o)
         v.figure(f"{eff}_limit", m)

@@ -24,38 +24,23 @@ ONSET_MM = ["1", "1.5", "2", "3"]
 SEEDS_ONSET = 10
 
 
-def sweep(v, effects, seeds, first):
-    env = {"KNEESIM_FORCES_FAMILIES": ",".join(FAMILIES), "KNEESIM_FORCES_EFFECTS": ",".join(effects),
-           "KNEESIM_FORCES_RATIOS": "1.2", "KNEESIM_FORCES_SEEDS": str(seeds),
-           "KNEESIM_FORCES_FIRST_SEED": str(first)}
+def tool(v, env):
     rec = " ".join(f"{k}={val}" for k, val in env.items())
-    out = v.tool("tests/diagnosis_forces/test_diagnosis_forces_long", ["-tc=forces sweep", "--no-skip"],
-                 record=rec + ' build/tests/diagnosis_forces/test_diagnosis_forces_long -tc="forces sweep" --no-skip',
-                 env=env)
-    return re.findall(r"^== (\S+) (\S+) ratio [0-9.]+: named (\d+) of (\d+)$", out, re.M)
+    return v.tool("tests/diagnosis_forces/test_diagnosis_forces_long", ["-tc=forces sweep", "--no-skip"],
+                  record=rec + ' build/tests/diagnosis_forces/test_diagnosis_forces_long -tc="forces sweep" --no-skip',
+                  env=env)
 
 
 def onset(v, mm):
-    env = {"KNEESIM_FORCES_FAMILIES": "white_walk", "KNEESIM_FORCES_EFFECTS": "load_line",
-           "KNEESIM_FORCES_RATIOS": "1.5", "KNEESIM_FORCES_SEEDS": str(SEEDS_ONSET),
-           "KNEESIM_FORCES_FIRST_SEED": "1300", "KNEESIM_FORCES_VALUE": mm}
-    rec = " ".join(f"{k}={val}" for k, val in env.items())
-    out = v.tool("tests/diagnosis_forces/test_diagnosis_forces_long", ["-tc=forces sweep", "--no-skip"],
-                 record=rec + ' build/tests/diagnosis_forces/test_diagnosis_forces_long -tc="forces sweep" --no-skip',
-                 env=env)
+    out = tool(v, {"KNEESIM_FORCES_FAMILIES": "white_walk", "KNEESIM_FORCES_EFFECTS": "load_line",
+                   "KNEESIM_FORCES_RATIOS": "1.5", "KNEESIM_FORCES_SEEDS": str(SEEDS_ONSET),
+                   "KNEESIM_FORCES_FIRST_SEED": "1300", "KNEESIM_FORCES_VALUE": mm})
     named, n = re.findall(r"^== \S+ \S+ ratio [0-9.]+: named (\d+) of (\d+)$", out, re.M)[0]
     return f"{named}/{n}"
 
 
 def run(v):
-    clean_none = clean_n = 0
-    for fam, eff, named, n in sweep(v, EFFECTS, SEEDS_EFFECT, 1100) + sweep(v, ["none"], SEEDS_CLEAN, 1200):
-        v.figure(f"{fam}_{eff}", f"{named}/{n}")
-        if eff == "none":
-            clean_none, clean_n = clean_none + int(named), clean_n + int(n)
-    v.figure("clean_records", clean_n)
-    v.figure("false_positives", clean_n - clean_none)
-    v.figure("false_positive_upper95_pct", 100 * T.false_positive_upper95(clean_n - clean_none, clean_n), "%")
+    T.tallies_at_1_2(v, tool, "KNEESIM_FORCES_", FAMILIES, EFFECTS, SEEDS_EFFECT, 1100, SEEDS_CLEAN, 1200)
     for mm in ONSET_MM:
         v.figure(f"onset_{mm.replace('.', '_')}mm", onset(v, mm))
 

@@ -8,7 +8,6 @@ the set's noise RMS, and clean sets. The synthetic data come from the generic im
 independent of the fits."""
 import importlib.util
 import os
-import re
 
 _spec = importlib.util.spec_from_file_location(
     "kneesim_tallies", os.path.join(os.path.dirname(__file__), "_tallies.py"))
@@ -23,26 +22,15 @@ SEEDS_EFFECT = 10
 SEEDS_CLEAN = 20
 
 
-def sweep(v, effects, seeds, first):
-    env = {"KNEESIM_KIN_FAMILIES": ",".join(FAMILIES), "KNEESIM_KIN_EFFECTS": ",".join(effects),
-           "KNEESIM_KIN_RATIOS": "1.2", "KNEESIM_KIN_SEEDS": str(seeds),
-           "KNEESIM_KIN_FIRST_SEED": str(first)}
+def tool(v, env):
     rec = " ".join(f"{k}={val}" for k, val in env.items())
-    out = v.tool("tests/diagnosis_knee/test_diagnosis_knee_long", ["-tc=kinematics correlated sweep", "--no-skip"],
-                 record=rec + ' build/tests/diagnosis_knee/test_diagnosis_knee_long -tc="kinematics correlated sweep" --no-skip',
-                 env=env)
-    return re.findall(r"^== (\S+) (\S+) ratio [0-9.]+: named (\d+) of (\d+)$", out, re.M)
+    return v.tool("tests/diagnosis_knee/test_diagnosis_knee_long", ["-tc=kinematics correlated sweep", "--no-skip"],
+                  record=rec + ' build/tests/diagnosis_knee/test_diagnosis_knee_long -tc="kinematics correlated sweep" --no-skip',
+                  env=env)
 
 
 def run(v):
-    clean_none = clean_n = 0
-    for fam, eff, named, n in sweep(v, EFFECTS, SEEDS_EFFECT, 1010000) + sweep(v, ["none"], SEEDS_CLEAN, 1020000):
-        v.figure(f"{fam}_{eff}", f"{named}/{n}")
-        if eff == "none":
-            clean_none, clean_n = clean_none + int(named), clean_n + int(n)
-    v.figure("clean_records", clean_n)
-    v.figure("false_positives", clean_n - clean_none)
-    v.figure("false_positive_upper95_pct", 100 * T.false_positive_upper95(clean_n - clean_none, clean_n), "%")
+    T.tallies_at_1_2(v, tool, "KNEESIM_KIN_", FAMILIES, EFFECTS, SEEDS_EFFECT, 1010000, SEEDS_CLEAN, 1020000)
 
 
 TABLE = """

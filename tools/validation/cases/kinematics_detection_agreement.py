@@ -8,12 +8,11 @@ changed too), so the reported limit is the mean over the candidate's parameters 
 directions."""
 import importlib.util
 import os
-import re
 
 _spec = importlib.util.spec_from_file_location(
-    "kneesim_bor_detection_agreement", os.path.join(os.path.dirname(__file__), "bor_detection_agreement.py"))
-B = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(B)
+    "kneesim_tallies", os.path.join(os.path.dirname(__file__), "_tallies.py"))
+T = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(T)
 
 TITLE = "Kinematics: reported detection limits against the hidden-effect onset"
 LONG = True  # about 140 diagnoses and 4 with detection limits: 10-15 minutes
@@ -30,25 +29,7 @@ def tool(v, env):
 
 
 def run(v):
-    out = tool(v, {"KNEESIM_KIN_EFFECTS": ",".join(EFFECTS), "KNEESIM_KIN_RATIOS": ",".join(RATIOS),
-                   "KNEESIM_KIN_SEEDS": "10", "KNEESIM_KIN_FIRST_SEED": "1030000"})
-    fr = {}
-    for eff, ratio, named, n in re.findall(r"^== registration (\S+) ratio ([0-9.]+): named (\d+) of (\d+)$", out, re.M):
-        fr.setdefault(eff, []).append((float(ratio), int(named) / int(n)))
-        v.figure(f"{eff}_{ratio.replace('.', 'p')}", f"{named}/{n}")
-    det = tool(v, {"KNEESIM_KIN_EFFECTS": "none", "KNEESIM_KIN_SEEDS": "4",
-                   "KNEESIM_KIN_FIRST_SEED": "1040000", "KNEESIM_KIN_DETECTION": "20"})
-    lim = {}
-    for eff, reached, ratio in re.findall(r"^\s+limit (\S+) \S+[+-]1: (at|beyond) \S+, signal \S+, ratio ([0-9.]+)", det, re.M):
-        lim.setdefault(eff, []).append(float(ratio) if reached == "at" else float("inf"))
-    for eff in EFFECTS:
-        o = B.onset(sorted(fr.get(eff, [])))
-        m = sum(lim[eff]) / len(lim[eff])
-        v.figure(f"{eff}_onset", o)
-        v.figure(f"{eff}_limit", m)
-        v.figure(f"{eff}_limit_lo", min(lim[eff]))
-        v.figure(f"{eff}_limit_hi", max(lim[eff]))
-        v.figure(f"{eff}_factor", m / o if o > 0 else float("nan"))
+    T.detection_agreement(v, tool, "KNEESIM_KIN_", "registration", EFFECTS, RATIOS, 1030000, 1040000, plus_only=False)
 
 
 TABLE = """

@@ -7,12 +7,11 @@ ratios, in the direction the hidden effects take (more wear early, wear rising w
 the sized generator's pressure exponent is positive, more wear under cross-shear)."""
 import importlib.util
 import os
-import re
 
 _spec = importlib.util.spec_from_file_location(
-    "kneesim_bor_detection_agreement", os.path.join(os.path.dirname(__file__), "bor_detection_agreement.py"))
-B = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(B)
+    "kneesim_tallies", os.path.join(os.path.dirname(__file__), "_tallies.py"))
+T = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(T)
 
 TITLE = "Knee wear: reported detection limits against the hidden-effect onset"
 LONG = True  # about 210 diagnoses and 4 with detection limits: 15-20 minutes
@@ -30,24 +29,7 @@ def tool(v, env):
 
 
 def run(v):
-    out = tool(v, {"KNEESIM_KW_EFFECTS": ",".join(EFFECTS), "KNEESIM_KW_RATIOS": ",".join(RATIOS),
-                   "KNEESIM_KW_SEEDS": "10", "KNEESIM_KW_FIRST_SEED": "930000"})
-    fr = {}
-    for eff, ratio, named, n in re.findall(r"^== walk (\S+) ratio ([0-9.]+): named (\d+) of (\d+)$", out, re.M):
-        fr.setdefault(eff, []).append((float(ratio), int(named) / int(n)))
-        v.figure(f"{eff}_{ratio.replace('.', 'p')}", f"{named}/{n}")
-    det = tool(v, {"KNEESIM_KW_EFFECTS": "none", "KNEESIM_KW_SEEDS": "4",
-                   "KNEESIM_KW_FIRST_SEED": "940000", "KNEESIM_KW_DETECTION": "20"})
-    lim = {}
-    for eff, d, reached, ratio in re.findall(r"^\s+limit (\S+) \S+?([+-])1: (at|beyond) \S+, signal \S+, ratio ([0-9.]+)", det, re.M):
-        if d == "+":
-            lim.setdefault(eff, []).append(float(ratio) if reached == "at" else float("inf"))
-    for eff in EFFECTS:
-        o = B.onset(sorted(fr.get(eff, [])))
-        m = sum(lim[eff]) / len(lim[eff])
-        v.figure(f"{eff}_onset", o)
-        v.figure(f"{eff}_limit", m)
-        v.figure(f"{eff}_factor", m / o if o > 0 else float("nan"))
+    T.detection_agreement(v, tool, "KNEESIM_KW_", "walk", EFFECTS, RATIOS, 930000, 940000, plus_only=True)
 
 
 TABLE = """

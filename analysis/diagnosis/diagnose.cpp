@@ -166,6 +166,7 @@ void select_among_supported(DiagnosisResult& res, const std::vector<int>& suppor
                             const DiagnosisOptions& options) {
   res.selected = 0;
   res.tied_with = -1;
+  res.tie_band = options.rank_by_aicc ? options.tie_aicc : 0.0;
   if (supported.empty()) return;
   const auto& c = res.candidates;
   auto at = [&](int i) -> const ModelFit& { return c[static_cast<size_t>(i)]; };

@@ -148,6 +148,7 @@ struct DiagnosisResult {
   // a supported candidate within tie_aicc of the named one's AICc (the data's likelihood does
   // not tell the two apart; the held-out RMSE named `selected`), or -1
   int tied_with = -1;
+  double tie_band = 2.0;            // the AICc band of the selection (options.tie_aicc) [-]
   double gain = 0.0;                // 1 - heldout extended / heldout baseline [-]
   double gain_vs_trivial = 0.0;     // 1 - heldout extended / heldout trivial [-]
   double seconds = 0.0;             // wall time [s]

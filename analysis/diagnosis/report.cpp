@@ -34,14 +34,18 @@ std::string at_bound_text(const ModelFit& m) {
   return out;
 }
 
+bool supported(const ModelFit& m) {
+  return m.effect != Effect::none && m.passes_gates && m.beats_trivial && m.at_bound.empty();
+}
+
 std::string verdict(const DiagnosisResult& r, size_t i) {
   const ModelFit& m = r.candidates[i];
   if (m.effect == Effect::none) return "reference";
   if (static_cast<int>(i) == r.selected) {
-    return r.tied_with < 0 ? "named"
-                           : "named (AICc within " + num(r.extended().aicc - r.candidates[static_cast<size_t>(r.tied_with)].aicc, "%+.1f") +
-                                 " of `" + std::string(effect_name(r.candidates[static_cast<size_t>(r.tied_with)].effect)) +
-                                 "`: the lower held-out RMSE decided)";
+    if (r.tied_with < 0) return "named";
+    const ModelFit& t = r.candidates[static_cast<size_t>(r.tied_with)];
+    return "named (AICc " + num(m.aicc - t.aicc, "%+.1f") + " against `" +
+           std::string(effect_name(t.effect)) + "`, within the tie band: the lower held-out RMSE decided)";
   }
   if (!m.at_bound.empty()) {
     return std::string(m.passes_gates ? "passed the gates but " : "") + "at a search bound: " +
@@ -51,7 +55,11 @@ std::string verdict(const DiagnosisResult& r, size_t i) {
     return "passed the gates against none but not against the trivial predictor: not named";
   }
   if (!m.passes_gates) return "not supported";
-  return static_cast<int>(i) == r.tied_with
+  double lowest = m.aicc;  // the lowest AICc of the supported candidates
+  for (const auto& o : r.candidates) {
+    if (supported(o)) lowest = std::min(lowest, o.aicc);
+  }
+  return m.aicc <= lowest + r.tie_band
              ? "supported, as likely as the named one (AICc within the tie band) but a higher held-out RMSE"
              : "supported, higher AICc than the named one";
 }

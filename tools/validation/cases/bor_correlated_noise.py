@@ -3,7 +3,13 @@ model (tests/diagnosis/hidden_effect.h: random-walk weighings, a soak-control up
 with time, Student-t outliers, multiplicative lognormal errors): effects sized so that their
 identifiable signal is 1.2 times the set's noise RMS, and clean sets; the hidden values, the
 generator and its seeds are independent of the fits."""
-import re
+import importlib.util
+import os
+
+_spec = importlib.util.spec_from_file_location(
+    "kneesim_tallies", os.path.join(os.path.dirname(__file__), "_tallies.py"))
+T = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(T)
 
 TITLE = "Block-on-ring hidden effects at 1.2x the noise under other noise families"
 LONG = True  # about 1-3 s per diagnosis
@@ -13,20 +19,15 @@ SEEDS_EFFECT = 10
 SEEDS_CLEAN = 20
 
 
-def sweep(v, effects, seeds, first):
-    env = {"KNEESIM_BOR_FAMILIES": ",".join(FAMILIES), "KNEESIM_BOR_EFFECTS": ",".join(effects),
-           "KNEESIM_BOR_RATIOS": "1.2", "KNEESIM_BOR_SEEDS": str(seeds),
-           "KNEESIM_BOR_FIRST_SEED": str(first)}
+def tool(v, env):
     rec = " ".join(f"{k}={val}" for k, val in env.items())
-    out = v.tool("tests/diagnosis/test_diagnosis_long", ["-tc=correlated sweep", "--no-skip"],
-                 record=rec + ' build/tests/diagnosis/test_diagnosis_long -tc="correlated sweep" --no-skip',
-                 env=env)
-    return re.findall(r"^== (\S+) (\S+) ratio [0-9.]+: named (\d+) of (\d+)$", out, re.M)
+    return v.tool("tests/diagnosis/test_diagnosis_long", ["-tc=correlated sweep", "--no-skip"],
+                  record=rec + ' build/tests/diagnosis/test_diagnosis_long -tc="correlated sweep" --no-skip',
+                  env=env)
 
 
 def run(v):
-    for fam, eff, named, n in sweep(v, EFFECTS, SEEDS_EFFECT, 810000) + sweep(v, ["none"], SEEDS_CLEAN, 820000):
-        v.figure(f"{fam}_{eff}", f"{named}/{n}")
+    T.tallies_at_1_2(v, tool, "KNEESIM_BOR_", FAMILIES, EFFECTS, SEEDS_EFFECT, 810000, SEEDS_CLEAN, 820000)
 
 
 TABLE = """
@@ -36,4 +37,6 @@ TABLE = """
 | soak_drift (uptake growing with time) | {soak_drift_running_in} | {soak_drift_incubation} | {soak_drift_pressure_dependent_wear} | {soak_drift_none} |
 | heavy (Student-t, 3 dof) | {heavy_running_in} | {heavy_incubation} | {heavy_pressure_dependent_wear} | {heavy_none} |
 | lognormal (multiplicative) | {lognormal_running_in} | {lognormal_incubation} | {lognormal_pressure_dependent_wear} | {lognormal_none} |
+
+False positives: {false_positives:.0f} of {clean_records:.0f} clean sets; the rate's one-sided 95 % upper bound (Clopper-Pearson) {false_positive_upper95_pct:.1f} %.
 """

@@ -144,7 +144,7 @@ DiagnosisResult diagnose(const DiagnosisCase& c, const DiagnosisOptions& options
     // a gain the trivial predictor also achieves is not a finding: the same held-out margin
     // against it (binds only where the baseline predicts worse than the trivial predictor)
     m.beats_trivial = beats_trivial(m, res.trivial, options);
-    if (m.passes_gates && m.beats_trivial && m.at_bound.empty()) supported.push_back(static_cast<int>(i));
+    if (is_supported(m)) supported.push_back(static_cast<int>(i));
   }
   select_among_supported(res, supported, options);
   bootstrap(pb, res.candidates[static_cast<size_t>(res.selected)],
@@ -190,6 +190,10 @@ void select_among_supported(DiagnosisResult& res, const std::vector<int>& suppor
   for (int i : band) {  // the runner-up: the lowest AICc of the others in the band
     if (i != res.selected && (res.tied_with < 0 || at(i).aicc < at(res.tied_with).aicc)) res.tied_with = i;
   }
+}
+
+bool is_supported(const ModelFit& m) {
+  return m.effect != Effect::none && m.passes_gates && m.beats_trivial && m.at_bound.empty();
 }
 
 bool passes_gates(const ModelFit& m, const ModelFit& none, const DiagnosisOptions& options) {

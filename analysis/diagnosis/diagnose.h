@@ -171,6 +171,9 @@ bool passes_gates(const ModelFit& m, const ModelFit& none, const DiagnosisOption
 void select_among_supported(DiagnosisResult& res, const std::vector<int>& supported,
                             const DiagnosisOptions& options);
 bool beats_trivial(const ModelFit& m, const ModelFit& trivial, const DiagnosisOptions& options);
+// a candidate (not none) that may be named: both gates and the trivial gate passed, no
+// parameter at a search bound (the flags set by diagnose())
+bool is_supported(const ModelFit& m);
 
 // runs the diagnosis; throws InputError when the data have fewer measurements than a
 // candidate and the error model need (n > parameters + 2 for AICc), or for an unknown noise

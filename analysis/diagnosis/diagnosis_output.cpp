@@ -30,11 +30,11 @@ std::string write_diagnosis(const DiagnosisCase& c, const DiagnosisResult& r,
   if (r.tied_with >= 0) {
     const ModelFit& t = r.candidates[static_cast<size_t>(r.tied_with)];
     std::snprintf(line, sizeof line,
-                  "  %s fits as well (AICc %+.1f against the named one's, within 2: the data's "
+                  "  %s fits as well (AICc %+.1f against the named one's, within %g: the data's "
                   "likelihood does not tell them apart); named by the lower held-out RMSE (%.4g "
                   "against %.4g)\n",
                   std::string(effect_name(t.effect)).c_str(), t.aicc - r.extended().aicc,
-                  r.extended().heldout_rmse, t.heldout_rmse);
+                  r.tie_band, r.extended().heldout_rmse, t.heldout_rmse);
     console += line;
   }
   return console;

@@ -34,10 +34,6 @@ std::string at_bound_text(const ModelFit& m) {
   return out;
 }
 
-bool supported(const ModelFit& m) {
-  return m.effect != Effect::none && m.passes_gates && m.beats_trivial && m.at_bound.empty();
-}
-
 std::string verdict(const DiagnosisResult& r, size_t i) {
   const ModelFit& m = r.candidates[i];
   if (m.effect == Effect::none) return "reference";
@@ -57,7 +53,7 @@ std::string verdict(const DiagnosisResult& r, size_t i) {
   if (!m.passes_gates) return "not supported";
   double lowest = m.aicc;  // the lowest AICc of the supported candidates
   for (const auto& o : r.candidates) {
-    if (supported(o)) lowest = std::min(lowest, o.aicc);
+    if (is_supported(o)) lowest = std::min(lowest, o.aicc);
   }
   return m.aicc <= lowest + r.tie_band
              ? "supported, as likely as the named one (AICc within the tie band) but a higher held-out RMSE"
@@ -351,8 +347,9 @@ std::string diagnosis_markdown(const DiagnosisCase& c, const DiagnosisResult& r)
         "RMSE by more than the threshold fraction against `none` (the baseline refitted by "
         "least squares), with no parameter at a search bound; among those the lowest AICc wins "
         "(the likelihood of all measurements under the error model; the held-out error of a "
-        "few folds is a gate, not a ranking), except that candidates within 2 of the lowest "
-        "AICc are not told apart by it and the lower held-out RMSE names one of them. ";
+        "few folds is a gate, not a ranking), except that candidates within " + num(r.tie_band, "%g") +
+        " of the lowest AICc are not told apart by it and the lower held-out RMSE names one of "
+        "them. ";
   md += error_model_markdown(r);
   md += detection_markdown(r);
   md += "\n";

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "analysis/diagnosis/diagnose.h"
@@ -17,7 +18,10 @@ namespace {
 // y = b + s x on x = 0..19 in two groups (folds by group); the baseline is the constant b,
 // the "effect" the slope s with the given bounds (Effect::running_in stands for any effect:
 // the framework does not look at its meaning)
-DiagnosisCase line_case(double true_slope, double slope_upper, double noise_sd) {
+// `shape` is the candidates' curve, s shape(effect, x): x for every effect unless given
+DiagnosisCase line_case(double true_slope, double slope_upper, double noise_sd,
+                        std::function<double(Effect, double)> shape = nullptr) {
+  if (!shape) shape = [](Effect, double x) { return x; };
   DiagnosisCase c;
   c.name = "line";
   c.measured.source = "line.csv";
@@ -36,12 +40,12 @@ DiagnosisCase line_case(double true_slope, double slope_upper, double noise_sd) 
     return std::vector<ParamSpec>{{"s_mm", "slope", 0.01, slope_upper, 0.1, true, {}}};
   };
   auto rows = c.measured.rows;
-  c.predict = [rows](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep,
-                     const std::vector<int>& idx) {
+  c.predict = [rows, shape](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep,
+                            const std::vector<int>& idx) {
     Eigen::VectorXd v(static_cast<Eigen::Index>(idx.size()));
     for (size_t i = 0; i < idx.size(); ++i) {
       const double x = rows[static_cast<size_t>(idx[i])].x;
-      v[static_cast<Eigen::Index>(i)] = b[0] + (e == Effect::none ? 0.0 : ep[0] * x);
+      v[static_cast<Eigen::Index>(i)] = b[0] + (e == Effect::none ? 0.0 : ep[0] * shape(e, x));
     }
     return v;
   };
@@ -220,19 +224,10 @@ TEST_CASE("two candidates the likelihood cannot tell apart: named by held-out RM
   // y = 3 + 0.2 x + noise; running_in stands for the slope s x, incubation for s x^1.03 (the
   // framework does not look at the effects' meaning): nearly the same curve, so their AICc
   // differ by far less than 2. Reference: the tie rule of select_among_supported (diagnose.h).
-  DiagnosisCase c = line_case(0.2, 10.0, 0.3);
+  DiagnosisCase c = line_case(0.2, 10.0, 0.3, [](Effect e, double x) {
+    return e == Effect::incubation ? std::pow(x, 1.03) : x;
+  });
   c.candidates = {Effect::running_in, Effect::incubation};
-  auto rows = c.measured.rows;
-  c.predict = [rows](Effect e, const Eigen::VectorXd& b, const Eigen::VectorXd& ep,
-                     const std::vector<int>& idx) {
-    Eigen::VectorXd v(static_cast<Eigen::Index>(idx.size()));
-    for (size_t i = 0; i < idx.size(); ++i) {
-      const double x = rows[static_cast<size_t>(idx[i])].x;
-      const double shape = e == Effect::incubation ? std::pow(x, 1.03) : x;
-      v[static_cast<Eigen::Index>(i)] = b[0] + (e == Effect::none ? 0.0 : ep[0] * shape);
-    }
-    return v;
-  };
   DiagnosisOptions opt;
   opt.bootstrap = 0;
   const DiagnosisResult r = diagnose(c, opt);

@@ -79,3 +79,17 @@ def tallies_at_1_2(v, tool, prefix, families, effects, seeds_effect, first_effec
     v.figure("clean_records", clean_n)
     v.figure("false_positives", clean_n - clean_none)
     v.figure("false_positive_upper95_pct", 100 * false_positive_upper95(clean_n - clean_none, clean_n), "%")
+
+
+def sweep_tool(binary, testcase, appended=None, source_dir=False):
+    """The `tool(v, env)` of a case: runs a skipped sweep test case of a test binary of the
+    build (`binary`, e.g. tests/diagnosis/test_diagnosis_long) with the environment `env` plus
+    `appended`, and records the command as it is typed (the environment, then the binary).
+    source_dir: the run also gets KNEESIM_SOURCE_DIR (not recorded: validate runs it for you)."""
+    def tool(v, env):
+        env = dict(env, **(appended or {}))
+        rec = " ".join(f"{k}={val}" for k, val in env.items())
+        run_env = dict(env, KNEESIM_SOURCE_DIR=v.source) if source_dir else env
+        return v.tool(binary, [f"-tc={testcase}", "--no-skip"],
+                      record=f'{rec} build/{binary} -tc="{testcase}" --no-skip', env=run_env)
+    return tool

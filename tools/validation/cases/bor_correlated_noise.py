@@ -19,11 +19,7 @@ SEEDS_EFFECT = 10
 SEEDS_CLEAN = 20
 
 
-def tool(v, env):
-    rec = " ".join(f"{k}={val}" for k, val in env.items())
-    return v.tool("tests/diagnosis/test_diagnosis_long", ["-tc=correlated sweep", "--no-skip"],
-                  record=rec + ' build/tests/diagnosis/test_diagnosis_long -tc="correlated sweep" --no-skip',
-                  env=env)
+tool = T.sweep_tool("tests/diagnosis/test_diagnosis_long", "correlated sweep")
 
 
 def run(v):

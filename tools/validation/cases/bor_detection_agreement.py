@@ -16,14 +16,9 @@ TITLE = "Block-on-ring: reported detection limits against the hidden-effect onse
 LONG = True  # about 200 diagnoses and 4 with detection limits: 5-15 minutes
 EFFECTS = ["running_in", "incubation", "pressure_dependent_wear"]
 RATIOS = ["0.1", "0.2", "0.3", "0.4", "0.6", "0.8", "1.0"]
-RECORD = 'build/tests/diagnosis/test_diagnosis_long -tc="correlated sweep" --no-skip'
 
 
-def tool(v, env):
-    env = dict(env, KNEESIM_BOR_FAMILIES="walk")
-    rec = " ".join(f"{k}={val}" for k, val in env.items())
-    return v.tool("tests/diagnosis/test_diagnosis_long", ["-tc=correlated sweep", "--no-skip"],
-                  record=rec + " " + RECORD, env=env)
+tool = T.sweep_tool("tests/diagnosis/test_diagnosis_long", "correlated sweep", {"KNEESIM_BOR_FAMILIES": "walk"})
 
 
 def run(v):

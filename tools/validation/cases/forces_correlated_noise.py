@@ -24,11 +24,7 @@ ONSET_MM = ["1", "1.5", "2", "3"]
 SEEDS_ONSET = 10
 
 
-def tool(v, env):
-    rec = " ".join(f"{k}={val}" for k, val in env.items())
-    return v.tool("tests/diagnosis_forces/test_diagnosis_forces_long", ["-tc=forces sweep", "--no-skip"],
-                  record=rec + ' build/tests/diagnosis_forces/test_diagnosis_forces_long -tc="forces sweep" --no-skip',
-                  env=env)
+tool = T.sweep_tool("tests/diagnosis_forces/test_diagnosis_forces_long", "forces sweep")
 
 
 def onset(v, mm):

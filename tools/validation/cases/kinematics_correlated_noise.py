@@ -22,11 +22,7 @@ SEEDS_EFFECT = 10
 SEEDS_CLEAN = 20
 
 
-def tool(v, env):
-    rec = " ".join(f"{k}={val}" for k, val in env.items())
-    return v.tool("tests/diagnosis_knee/test_diagnosis_knee_long", ["-tc=kinematics correlated sweep", "--no-skip"],
-                  record=rec + ' build/tests/diagnosis_knee/test_diagnosis_knee_long -tc="kinematics correlated sweep" --no-skip',
-                  env=env)
+tool = T.sweep_tool("tests/diagnosis_knee/test_diagnosis_knee_long", "kinematics correlated sweep")
 
 
 def run(v):

@@ -18,14 +18,10 @@ TITLE = "Kinematics: reported detection limits against the hidden-effect onset"
 LONG = True  # about 140 diagnoses and 4 with detection limits: 10-15 minutes
 EFFECTS = ["friction", "restraint"]
 RATIOS = ["0.1", "0.2", "0.3", "0.4", "0.6", "0.8", "1.0"]
-RECORD = 'build/tests/diagnosis_knee/test_diagnosis_knee_long -tc="kinematics correlated sweep" --no-skip'
 
 
-def tool(v, env):
-    env = dict(env, KNEESIM_KIN_FAMILIES="registration")
-    rec = " ".join(f"{k}={val}" for k, val in env.items())
-    return v.tool("tests/diagnosis_knee/test_diagnosis_knee_long", ["-tc=kinematics correlated sweep", "--no-skip"],
-                  record=rec + " " + RECORD, env=env)
+tool = T.sweep_tool("tests/diagnosis_knee/test_diagnosis_knee_long", "kinematics correlated sweep",
+                    {"KNEESIM_KIN_FAMILIES": "registration"})
 
 
 def run(v):

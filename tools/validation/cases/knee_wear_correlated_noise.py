@@ -19,12 +19,8 @@ SEEDS_EFFECT = 10
 SEEDS_CLEAN = 20
 
 
-def tool(v, env):
-    rec = " ".join(f"{k}={val}" for k, val in env.items())
-    env = dict(env, KNEESIM_SOURCE_DIR=v.source)  # the synthetic sets' conditions (knee_conditions.toml)
-    return v.tool("tests/diagnosis_knee/test_diagnosis_knee_long", ["-tc=knee wear correlated sweep", "--no-skip"],
-                  record=rec + ' build/tests/diagnosis_knee/test_diagnosis_knee_long -tc="knee wear correlated sweep" --no-skip',
-                  env=env)
+# KNEESIM_SOURCE_DIR: the synthetic sets' conditions (knee_conditions.toml)
+tool = T.sweep_tool("tests/diagnosis_knee/test_diagnosis_knee_long", "knee wear correlated sweep", source_dir=True)
 
 
 def run(v):

@@ -17,15 +17,11 @@ TITLE = "Knee wear: reported detection limits against the hidden-effect onset"
 LONG = True  # about 210 diagnoses and 4 with detection limits: 15-20 minutes
 EFFECTS = ["running_in", "pressure_dependent_wear", "cross_shear"]
 RATIOS = ["0.1", "0.2", "0.3", "0.4", "0.6", "0.8", "1.0"]
-RECORD = 'build/tests/diagnosis_knee/test_diagnosis_knee_long -tc="knee wear correlated sweep" --no-skip'
 
 
-def tool(v, env):
-    env = dict(env, KNEESIM_KW_FAMILIES="walk")
-    rec = " ".join(f"{k}={val}" for k, val in env.items())
-    env["KNEESIM_SOURCE_DIR"] = v.source  # the synthetic sets' conditions (knee_conditions.toml)
-    return v.tool("tests/diagnosis_knee/test_diagnosis_knee_long", ["-tc=knee wear correlated sweep", "--no-skip"],
-                  record=rec + " " + RECORD, env=env)
+# KNEESIM_SOURCE_DIR: the synthetic sets' conditions (knee_conditions.toml)
+tool = T.sweep_tool("tests/diagnosis_knee/test_diagnosis_knee_long", "knee wear correlated sweep",
+                    {"KNEESIM_KW_FAMILIES": "walk"}, source_dir=True)
 
 
 def run(v):

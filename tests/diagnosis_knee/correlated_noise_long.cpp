@@ -6,7 +6,9 @@
 //
 // The skipped test case "kinematics correlated sweep" runs any family, effect and ratio over a
 // seed range (environment: KNEESIM_KIN_FAMILIES, KNEESIM_KIN_EFFECTS, KNEESIM_KIN_RATIOS,
-// KNEESIM_KIN_SEEDS, KNEESIM_KIN_FIRST_SEED, KNEESIM_KIN_DETECTION = replicates).
+// KNEESIM_KIN_SEEDS, KNEESIM_KIN_FIRST_SEED, KNEESIM_KIN_DETECTION = replicates,
+// KNEESIM_KIN_TWIN_DETECTION = replicates of the detection limits of each effect set's clean
+// twin: its noise without the effect).
 #include <doctest/doctest.h>
 
 #include <cstdio>
@@ -73,6 +75,8 @@ TEST_CASE("kinematics correlated sweep" * doctest::skip()) {
   opt.rank_by_aicc = !std::getenv("KNEESIM_RANK_HELDOUT");
   opt.detection_replicates = static_cast<int>(env_int("KNEESIM_KIN_DETECTION", 0));
   if (const char* nm = std::getenv("KNEESIM_NOISE_MODEL")) opt.noise_model = nm;
+  DiagnosisOptions twin_opt = opt;
+  twin_opt.detection_replicates = static_cast<int>(env_int("KNEESIM_KIN_TWIN_DETECTION", 0));
   for (const auto& fam : families) {
     for (const auto& eff : effects) {
       const Effect truth = parse_effect(eff, "KNEESIM_KIN_EFFECTS");
@@ -98,11 +102,23 @@ TEST_CASE("kinematics correlated sweep" * doctest::skip()) {
                       r.baseline.heldout_rmse, r.trivial.heldout_rmse,
                       r.candidates.front().heldout_rmse,
                       kinematics_test_simulator()->simulations() - sims0, candidates_line(r).c_str());
-          for (const auto& d : r.detection.limits) {
-            std::printf("   limit %s %s%+d: %s %.4f, signal %.3f, ratio %.2f (noise %.3f)\n",
-                        std::string(effect_name(d.effect)).c_str(), d.param.c_str(), d.direction,
-                        d.reached ? "at" : "beyond", d.value, d.signal_rms, d.ratio,
-                        r.detection.noise_rms);
+          auto print_limits = [](const DiagnosisResult& dr, const char* prefix) {
+            for (const auto& d : dr.detection.limits) {
+              std::printf("   %slimit %s %s%+d: %s %.4f, signal %.3f, ratio %.2f (noise %.3f), "
+                          "null %.4f\n",
+                          prefix, std::string(effect_name(d.effect)).c_str(), d.param.c_str(),
+                          d.direction, d.reached ? "at" : "beyond", d.value, d.signal_rms,
+                          d.ratio, dr.detection.noise_rms, d.null_value);
+            }
+          };
+          print_limits(r, "");
+          // the clean twin: this set's noise without the effect, diagnosed with detection limits
+          if (twin_opt.detection_replicates > 0 && truth != Effect::none) {
+            const DiagnosisResult rt =
+                diagnose(make_kinematics_case(s.twin.data, kinematics_test_simulator(), {}), twin_opt);
+            std::printf("   twin noise %.3f: named %s\n", s.noise_rms,
+                        std::string(effect_name(rt.effect())).c_str());
+            print_limits(rt, "twin ");
           }
           std::fflush(stdout);
         }

@@ -344,9 +344,10 @@ KinematicsSet make_kinematics_at_ratio(Effect effect, double ratio, KinematicsNo
       noise.push_back(e);
     }
   }
-  auto make = [&](double scale) {
+  auto make = [&](double scale, bool twin = false) {
+    const auto source = twin ? sim->run(Effect::none, Eigen::VectorXd()) : truth;
     KneeSynthetic s;
-    s.truth = effect;
+    s.truth = twin ? Effect::none : effect;
     s.data.source = std::string("synthetic kinematics (") + kinematics_noise_name(kind) +
                     ") seed " + std::to_string(seed);
     s.data.x_name = "gait_pct";
@@ -355,7 +356,7 @@ KinematicsSet make_kinematics_at_ratio(Effect effect, double ratio, KinematicsNo
     for (int q = 0; q < 2; ++q) {
       const std::string quantity = q == 0 ? "ap_mm" : "ie_deg";
       for (int pct = 0; pct < 100; pct += 2, ++k) {
-        const double v = truth->at(quantity, pct) + offset[q] + scale * noise[k];
+        const double v = source->at(quantity, pct) + offset[q] + scale * noise[k];
         s.data.rows.push_back({"measured", "", quantity, static_cast<double>(pct), v, row++});
       }
     }
@@ -378,6 +379,7 @@ KinematicsSet make_kinematics_at_ratio(Effect effect, double ratio, KinematicsNo
   std::tie(sig, nz) = signal_and_noise(out.s);  // units move a little with the noise
   out.scale *= sig / (effect == Effect::none ? 1.2 : ratio) / (nz * out.scale);
   out.s = make(out.scale);
+  out.twin = make(out.scale, true);
   out.noise_rms = nz * out.scale;
   out.signal_rms = effect == Effect::none ? 0.0 : sig;
   if (effect == Effect::friction) out.s.params["friction_coefficient"] = ep[0];

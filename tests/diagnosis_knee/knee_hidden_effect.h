@@ -95,6 +95,11 @@ struct KinematicsSet {
   double noise_rms = 0.0;    // of the scaled noise [ap_mm units]
   double signal_rms = 0.0;   // identifiable signal of the hidden effect [ap_mm units]
   double scale = 1.0;        // factor on the family's noise [-]
+  // the same noise (draw and scale) and registration offsets without the hidden effect: the
+  // clean data of this noise regime, whose reported detection limit the effect's onset is
+  // compared with (the rotation-centre term grows with the scale against the error model's
+  // fixed prior, so clean sets at another scale are another regime)
+  KneeSynthetic twin;
 };
 KinematicsSet make_kinematics_at_ratio(diagnosis::Effect effect, double ratio, KinematicsNoise kind,
                                        std::uint64_t seed);

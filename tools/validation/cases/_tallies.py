@@ -31,13 +31,34 @@ def onset(fractions):
     return float("nan")
 
 
+def clean_limits(det, plus_only):
+    """The reported detection limits of clean sets in a sweep's output `det`, per candidate, as
+    the limit's identifiable signal over the clean set's own noise RMS (the generator's noise in
+    the diagnosis' RMSE measure, the same measure as the hidden effects' ratios; the limit's
+    printed ratio is over the *fitted* error model's RMS, which differs from it when the
+    generator is not the error model). A limit beyond the searched sizes counts as infinite."""
+    import re
+    lim, noise = {}, None
+    for line in det.splitlines():
+        m = re.match(r"^\S+ none ratio \S+ seed \d+.*? noise ([0-9.]+) signal", line)
+        if m:
+            noise = float(m.group(1))
+            continue
+        m = re.match(r"^\s+limit (\S+) \S+?([+-])1: (at|beyond) \S+, signal ([0-9.]+),", line)
+        if m and (m.group(2) == "+" or not plus_only):
+            lim.setdefault(m.group(1), []).append(
+                float(m.group(4)) / noise if m.group(3) == "at" else float("inf"))
+    return lim
+
+
 def detection_agreement(v, tool, prefix, family, effects, ratios, first_seed, clean_first_seed,
                         plus_only):
     """A hidden-effect sweep's named fractions at several noise ratios (10 seeds per size) and
     the detection limits (20 replicates) of 4 clean sets, through `tool(v, env)`, which runs a
     test binary's correlated sweep whose environment keys start with `prefix` (KNEESIM_KW_...).
     Writes per effect the tallies {effect}_{ratio}, the onset, the mean reported limit (over the
-    size parameters and, unless plus_only, both directions), its range and limit / onset."""
+    size parameters and, unless plus_only, both directions; clean_limits), its range and
+    limit / onset."""
     import re
     out = tool(v, {prefix + "EFFECTS": ",".join(effects), prefix + "RATIOS": ",".join(ratios),
                    prefix + "SEEDS": "10", prefix + "FIRST_SEED": str(first_seed)})
@@ -47,10 +68,7 @@ def detection_agreement(v, tool, prefix, family, effects, ratios, first_seed, cl
         v.figure(f"{eff}_{ratio.replace('.', 'p')}", f"{named}/{n}")
     det = tool(v, {prefix + "EFFECTS": "none", prefix + "SEEDS": "4",
                    prefix + "FIRST_SEED": str(clean_first_seed), prefix + "DETECTION": "20"})
-    lim = {}
-    for eff, d, reached, ratio in re.findall(r"^\s+limit (\S+) \S+?([+-])1: (at|beyond) \S+, signal \S+, ratio ([0-9.]+)", det, re.M):
-        if d == "+" or not plus_only:
-            lim.setdefault(eff, []).append(float(ratio) if reached == "at" else float("inf"))
+    lim = clean_limits(det, plus_only)
     for eff in effects:
         o = onset(sorted(fr.get(eff, [])))
         m = sum(lim[eff]) / len(lim[eff])
@@ -59,6 +77,98 @@ def detection_agreement(v, tool, prefix, family, effects, ratios, first_seed, cl
         v.figure(f"{eff}_limit_lo", min(lim[eff]))
         v.figure(f"{eff}_limit_hi", max(lim[eff]))
         v.figure(f"{eff}_factor", m / o if o > 0 else float("nan"))
+
+
+def logistic_x80(x, named):
+    """The size x (> 0) at which a logistic curve in ln x, fitted by maximum likelihood to
+    (x, named 0/1) pairs, gives an 80 % chance of naming; nan without both outcomes."""
+    from math import exp, log
+    z = [log(t) for t in x]
+    if min(named) == max(named):
+        return float("nan")
+    b0 = b1 = 0.0
+    ridge = 1e-6  # keeps separable data finite
+    for _ in range(200):  # Newton on the two coefficients
+        g0 = g1 = h00 = h01 = h11 = 0.0
+        for zi, yi in zip(z, named):
+            p = 1.0 / (1.0 + exp(-max(-700.0, min(700.0, b0 + b1 * zi))))
+            g0 += yi - p
+            g1 += (yi - p) * zi
+            w = p * (1.0 - p)
+            h00 += w
+            h01 += w * zi
+            h11 += w * zi * zi
+        g0, g1, h00, h11 = g0 - ridge * b0, g1 - ridge * b1, h00 + ridge, h11 + ridge
+        det = h00 * h11 - h01 * h01
+        d0, d1 = (h11 * g0 - h01 * g1) / det, (h00 * g1 - h01 * g0) / det
+        b0, b1 = b0 + d0, b1 + d1
+        if max(abs(d0), abs(d1)) < 1e-10:
+            break
+    if not b1 > 0:
+        return float("nan")
+    return exp((log(4.0) - b0) / b1)
+
+
+def twin_agreement(v, tool, prefix, family, effects, ratios, first_seed, seeds):
+    """Each hidden-effect set against the detection limit reported for its clean twin (the
+    same noise draw and scale without the effect; the sweep's {prefix}TWIN_DETECTION, 20
+    replicates): x = the set's identifiable signal / the twin's limit signal (in the direction
+    the hidden effect takes; the mean over the parameters it changes). Writes per effect the named tallies per
+    ratio, the x at which a logistic fit in ln x names 80 % (x80: 1 if the limits are exact;
+    above 1 they are optimistic), its 95 % bootstrap interval (1000 resamples of the sets), the
+    named fraction for x below 1 and at or above 1, and the twins named other than none."""
+    import random
+    import re
+    out = tool(v, {prefix + "EFFECTS": ",".join(effects), prefix + "RATIOS": ",".join(ratios),
+                   prefix + "SEEDS": str(seeds), prefix + "FIRST_SEED": str(first_seed),
+                   prefix + "TWIN_DETECTION": "20"})
+    for eff, ratio, named, n in re.findall(rf"^== {family} (\S+) ratio ([0-9.]+): named (\d+) of (\d+)$", out, re.M):
+        v.figure(f"{eff}_{ratio.replace('.', 'p')}", f"{named}/{n}")
+    sets, cur, twin_named = {}, None, 0
+    for line in out.splitlines():
+        m = re.match(rf"^{family} (\S+) ratio \S+ seed \d+((?: \S+=\S+)*) noise \S+ signal ([0-9.]+).*?: named (\S+) \|", line)
+        if m:
+            hidden = dict((k, float(val)) for k, val in re.findall(r"(\S+)=(\S+)", m.group(2)))
+            cur = {"eff": m.group(1), "signal": float(m.group(3)), "named": m.group(4) == m.group(1),
+                   "hidden": hidden, "lim": []}
+            sets.setdefault(cur["eff"], []).append(cur)
+            continue
+        m = re.match(r"^\s+twin noise \S+: named (\S+)", line)
+        if m:
+            twin_named += m.group(1) != "none"
+            continue
+        m = re.match(r"^\s+twin limit (\S+) (\S+?)([+-])1: (at|beyond) \S+, signal ([0-9.]+),.*null (\S+)$", line)
+        if m and cur is not None and m.group(1) == cur["eff"] and m.group(2) in cur["hidden"]:
+            # the limit in the direction the hidden effect takes, for each parameter it changes
+            if (cur["hidden"][m.group(2)] > float(m.group(6))) == (m.group(3) == "+"):
+                cur["lim"].append(float(m.group(5)))
+    rng = random.Random(20261129)
+
+    def percentile(sorted_values, q):
+        k = q / 100.0 * (len(sorted_values) - 1)
+        i = int(k)
+        j = min(i + 1, len(sorted_values) - 1)
+        return sorted_values[i] + (k - i) * (sorted_values[j] - sorted_values[i])
+
+    for eff in effects:
+        xs = [s["signal"] * len(s["lim"]) / sum(s["lim"]) for s in sets[eff]]
+        ys = [1.0 if s["named"] else 0.0 for s in sets[eff]]
+        boot = []
+        for _ in range(1000):
+            k = [rng.randrange(len(xs)) for _ in xs]
+            b = logistic_x80([xs[i] for i in k], [ys[i] for i in k])
+            if b == b:
+                boot.append(b)
+        boot.sort()
+        v.figure(f"{eff}_x80", logistic_x80(xs, ys))
+        v.figure(f"{eff}_x80_lo", percentile(boot, 2.5))
+        v.figure(f"{eff}_x80_hi", percentile(boot, 97.5))
+        below = [y for x, y in zip(xs, ys) if x < 1.0]
+        above = [y for x, y in zip(xs, ys) if x >= 1.0]
+        v.figure(f"{eff}_below", f"{int(sum(below))}/{len(below)}")
+        v.figure(f"{eff}_above", f"{int(sum(above))}/{len(above)}")
+    v.figure("twins", sum(len(s) for s in sets.values()))
+    v.figure("twins_named", twin_named)
 
 
 def tallies_at_1_2(v, tool, prefix, families, effects, seeds_effect, first_effect, seeds_clean,
@@ -85,11 +195,19 @@ def sweep_tool(binary, testcase, appended=None, source_dir=False):
     """The `tool(v, env)` of a case: runs a skipped sweep test case of a test binary of the
     build (`binary`, e.g. tests/diagnosis/test_diagnosis_long) with the environment `env` plus
     `appended`, and records the command as it is typed (the environment, then the binary).
-    source_dir: the run also gets KNEESIM_SOURCE_DIR (not recorded: validate runs it for you)."""
+    source_dir: the run also gets KNEESIM_SOURCE_DIR (not recorded: validate runs it for you).
+    Each run's output (every set's fit, every limit) is kept in the case's folder as
+    sweep_<n>.txt, headed by its command, for a reader to audit the tallies."""
     def tool(v, env):
+        import os
         env = dict(env, **(appended or {}))
         rec = " ".join(f"{k}={val}" for k, val in env.items())
         run_env = dict(env, KNEESIM_SOURCE_DIR=v.source) if source_dir else env
-        return v.tool(binary, [f"-tc={testcase}", "--no-skip"],
-                      record=f'{rec} build/{binary} -tc="{testcase}" --no-skip', env=run_env)
+        command = f'{rec} build/{binary} -tc="{testcase}" --no-skip'
+        out = v.tool(binary, [f"-tc={testcase}", "--no-skip"], record=command, env=run_env)
+        v.sweeps = getattr(v, "sweeps", 0) + 1  # numbered per validate run, overwritten by the next
+        n = v.sweeps
+        with open(os.path.join(v.dir, f"sweep_{n}.txt"), "w") as f:
+            f.write(f"# {command}\n{out}")
+        return out
     return tool

@@ -2,10 +2,10 @@
 effects start being named: hidden effects at several multiples of the set's noise RMS under
 random-walk weighings (not the fit's error model; tests/diagnosis/hidden_effect.h), 10 seeds
 per size, and the detection limits (20 replicates) reported for clean sets of the same
-design, as signal / noise ratios."""
+design, as the limit's signal over the clean set's noise RMS (the measure of the hidden
+effects' ratios)."""
 import importlib.util
 import os
-import re
 
 _spec = importlib.util.spec_from_file_location(
     "kneesim_tallies", os.path.join(os.path.dirname(__file__), "_tallies.py"))
@@ -22,28 +22,11 @@ tool = T.sweep_tool("tests/diagnosis/test_diagnosis_long", "correlated sweep", {
 
 
 def run(v):
-    out = tool(v, {"KNEESIM_BOR_EFFECTS": ",".join(EFFECTS), "KNEESIM_BOR_RATIOS": ",".join(RATIOS),
-                   "KNEESIM_BOR_SEEDS": "10", "KNEESIM_BOR_FIRST_SEED": "830000"})
-    fr = {}
-    for eff, ratio, named, n in re.findall(r"^== walk (\S+) ratio ([0-9.]+): named (\d+) of (\d+)$", out, re.M):
-        fr.setdefault(eff, []).append((float(ratio), int(named) / int(n)))
-        v.figure(f"{eff}_{ratio.replace('.', 'p')}", f"{named}/{n}")
-    det = tool(v, {"KNEESIM_BOR_EFFECTS": "none", "KNEESIM_BOR_SEEDS": "4",
-                   "KNEESIM_BOR_FIRST_SEED": "840000", "KNEESIM_BOR_DETECTION": "20"})
-    lim = {}
-    for eff, d, ratio in re.findall(r"^\s+limit (\S+) \S+?([+-])1: at \S+, signal \S+, ratio ([0-9.]+)", det, re.M):
-        if d == "+":
-            lim.setdefault(eff, []).append(float(ratio))
-    for eff in EFFECTS:
-        o = T.onset(sorted(fr.get(eff, [])))
-        m = sum(lim[eff]) / len(lim[eff])
-        v.figure(f"{eff}_onset", o)
-        v.figure(f"{eff}_limit", m)
-        v.figure(f"{eff}_factor", m / o if o > 0 else float("nan"))
+    T.detection_agreement(v, tool, "KNEESIM_BOR_", "walk", EFFECTS, RATIOS, 830000, 840000, plus_only=True)
 
 
 TABLE = """
-| effect | named at 0.1 / 0.2 / 0.3 / 0.4 / 0.6 / 0.8 / 1.0 x noise | onset (80 % named) | reported limit (mean of 4 clean sets) | limit / onset |
+| effect | named at 0.1 / 0.2 / 0.3 / 0.4 / 0.6 / 0.8 / 1.0 x noise | onset (80 % named) | reported limit: signal / the clean set's noise RMS (mean of 4 clean sets) | limit / onset |
 |---|---|---|---|---|
 | running_in | {running_in_0p10} / {running_in_0p20} / {running_in_0p30} / {running_in_0p40} / {running_in_0p60} / {running_in_0p80} / {running_in_1p00} | {running_in_onset:.2f} | {running_in_limit:.2f} | {running_in_factor:.2f} |
 | incubation | {incubation_0p10} / {incubation_0p20} / {incubation_0p30} / {incubation_0p40} / {incubation_0p60} / {incubation_0p80} / {incubation_1p00} | {incubation_onset:.2f} | {incubation_limit:.2f} | {incubation_factor:.2f} |

@@ -2,8 +2,8 @@
 start being named: running-in, a pressure-dependent wear factor and cross-shear at several
 multiples of the set's noise RMS under random-walk weighings (not the fit's error model;
 tests/diagnosis_knee/knee_hidden_effect.h), 10 seeds per size, and the detection limits (20
-replicates) reported for clean sets of the same design (volume only), as signal / noise
-ratios, in the direction the hidden effects take (more wear early, wear rising with pressure:
+replicates) reported for clean sets of the same design (volume only), as the limit's signal
+over the clean set's noise RMS (the measure of the hidden effects' ratios), in the direction the hidden effects take (more wear early, wear rising with pressure:
 the sized generator's pressure exponent is positive, more wear under cross-shear)."""
 import importlib.util
 import os
@@ -29,7 +29,7 @@ def run(v):
 
 
 TABLE = """
-| effect | named at 0.1 / 0.2 / 0.3 / 0.4 / 0.6 / 0.8 / 1.0 x noise | onset (80 % named) | reported limit (mean of 4 clean sets) | limit / onset |
+| effect | named at 0.1 / 0.2 / 0.3 / 0.4 / 0.6 / 0.8 / 1.0 x noise | onset (80 % named) | reported limit: signal / the clean set's noise RMS (mean of 4 clean sets) | limit / onset |
 |---|---|---|---|---|
 | running_in | {running_in_0p10} / {running_in_0p20} / {running_in_0p30} / {running_in_0p40} / {running_in_0p60} / {running_in_0p80} / {running_in_1p00} | {running_in_onset:.2f} | {running_in_limit:.2f} | {running_in_factor:.2f} |
 | pressure_dependent_wear (exponent > 0) | {pressure_dependent_wear_0p10} / {pressure_dependent_wear_0p20} / {pressure_dependent_wear_0p30} / {pressure_dependent_wear_0p40} / {pressure_dependent_wear_0p60} / {pressure_dependent_wear_0p80} / {pressure_dependent_wear_1p00} | {pressure_dependent_wear_onset:.2f} | {pressure_dependent_wear_limit:.2f} | {pressure_dependent_wear_factor:.2f} |

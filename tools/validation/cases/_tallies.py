@@ -113,10 +113,13 @@ def twin_agreement(v, tool, prefix, family, effects, ratios, first_seed, seeds):
     """Each hidden-effect set against the detection limit reported for its clean twin (the
     same noise draw and scale without the effect; the sweep's {prefix}TWIN_DETECTION, 20
     replicates): x = the set's identifiable signal / the twin's limit signal (in the direction
-    the hidden effect takes; the mean over the parameters it changes). Writes per effect the named tallies per
-    ratio, the x at which a logistic fit in ln x names 80 % (x80: 1 if the limits are exact;
-    above 1 they are optimistic), its 95 % bootstrap interval (1000 resamples of the sets), the
-    named fraction for x below 1 and at or above 1, and the twins named other than none."""
+    the hidden effect takes; the mean over the parameters it changes). A limit beyond the
+    searched sizes enters with the signal at the searched end, a lower bound: such a set's x is
+    too large, which can only move x80 up (towards "optimistic"). Writes per effect the named
+    tallies per ratio, the x at which a logistic fit in ln x names 80 % (x80: 1 if the limits
+    are exact; above 1 they are optimistic), its 95 % bootstrap interval (1000 resamples of the
+    sets), the named fraction for x below 1 and at or above 1, and the twins named other than
+    none."""
     import random
     import re
     out = tool(v, {prefix + "EFFECTS": ",".join(effects), prefix + "RATIOS": ",".join(ratios),

@@ -71,7 +71,8 @@ TEST_CASE("forces sweep" * doctest::skip()) {
           const double fixed_value = fixed ? std::atof(fixed) * (k % 2 ? -1.0 : 1.0) : 0.0;
           ForcesSet s = fixed ? bench.make(truth, fixed_value, family_of(fam), seed, ratio)
                               : bench.make_at_ratio(truth, ratio, family_of(fam), seed);
-          if (fixed) s.signal_rms = bench.signal(truth, fixed_value);
+          // a clean record (none) has no effect and no signal
+          if (fixed) s.signal_rms = truth == Effect::none ? 0.0 : bench.signal(truth, fixed_value);
           double tmin = 1e300;
           for (double t : s.measured.total_N) tmin = std::min(tmin, t);
           std::printf("min measured total %.1f N, noise scale %.2f\n", tmin, s.noise_scale);

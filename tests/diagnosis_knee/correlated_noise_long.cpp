@@ -61,6 +61,16 @@ std::string candidates_line(const DiagnosisResult& r) {
   return out;
 }
 
+// one line per reported detection limit, read by tools/validation/cases/_tallies.py
+void print_limits(const DiagnosisResult& r, const char* prefix) {
+  for (const auto& d : r.detection.limits) {
+    std::printf("   %slimit %s %s%+d: %s %.4g, signal %.3f, ratio %.2f (noise %.3f), null %.4g\n",
+                prefix, std::string(effect_name(d.effect)).c_str(), d.param.c_str(), d.direction,
+                d.reached ? "at" : "beyond", d.value, d.signal_rms, d.ratio, r.detection.noise_rms,
+                d.null_value);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("kinematics correlated sweep" * doctest::skip()) {
@@ -102,15 +112,6 @@ TEST_CASE("kinematics correlated sweep" * doctest::skip()) {
                       r.baseline.heldout_rmse, r.trivial.heldout_rmse,
                       r.candidates.front().heldout_rmse,
                       kinematics_test_simulator()->simulations() - sims0, candidates_line(r).c_str());
-          auto print_limits = [](const DiagnosisResult& dr, const char* prefix) {
-            for (const auto& d : dr.detection.limits) {
-              std::printf("   %slimit %s %s%+d: %s %.4f, signal %.3f, ratio %.2f (noise %.3f), "
-                          "null %.4f\n",
-                          prefix, std::string(effect_name(d.effect)).c_str(), d.param.c_str(),
-                          d.direction, d.reached ? "at" : "beyond", d.value, d.signal_rms,
-                          d.ratio, dr.detection.noise_rms, d.null_value);
-            }
-          };
           print_limits(r, "");
           // the clean twin: this set's noise without the effect, diagnosed with detection limits
           if (twin_opt.detection_replicates > 0 && truth != Effect::none) {
@@ -166,12 +167,7 @@ TEST_CASE("knee wear correlated sweep" * doctest::skip()) {
                       s.signal_rms, std::string(effect_name(r.effect())).c_str(),
                       r.candidates.front().noise.rho, r.candidates.front().noise.rho_offset,
                       r.seconds, candidates_line(r).c_str());
-          for (const auto& d : r.detection.limits) {
-            std::printf("   limit %s %s%+d: %s %.4g, signal %.3f, ratio %.2f (noise %.3f)\n",
-                        std::string(effect_name(d.effect)).c_str(), d.param.c_str(), d.direction,
-                        d.reached ? "at" : "beyond", d.value, d.signal_rms, d.ratio,
-                        r.detection.noise_rms);
-          }
+          print_limits(r, "");
           std::fflush(stdout);
         }
         std::printf("== %s %s ratio %.2f: named %d of %d\n", fam.c_str(), eff.c_str(), ratio, named, seeds);

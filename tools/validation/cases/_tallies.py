@@ -1,6 +1,12 @@
 """Shared by the hidden-effect tally cases (a helper, not a case: its name starts with "_"):
-the statistical bound that a tally of clean sets can state."""
-from math import comb
+running a test binary's sweep (sweep_tool), reading its tally lines, the statistics of the
+tallies (the false-positive bound of clean sets, the onset, the logistic onset) and the
+agreement of reported detection limits with the onset."""
+import os
+import random
+import re
+import statistics
+from math import comb, exp, log
 
 
 def false_positive_upper95(false_positives, records):
@@ -16,6 +22,13 @@ def false_positive_upper95(false_positives, records):
         lo, hi = (p, hi) if cdf > 0.05 else (lo, p)
     return 0.5 * (lo + hi)
 
+
+
+def tally_lines(out):
+    """The "== FAMILY EFFECT ratio R: named K of N" lines of a sweep's output `out`, as
+    (family, effect, ratio text, named, n) in order."""
+    return [(fam, eff, ratio, int(named), int(n)) for fam, eff, ratio, named, n in
+            re.findall(r"^== (\S+) (\S+) ratio ([0-9.]+): named (\d+) of (\d+)$", out, re.M)]
 
 
 def onset(fractions):
@@ -37,7 +50,6 @@ def clean_limits(det, plus_only):
     the diagnosis' RMSE measure, the same measure as the hidden effects' ratios; the limit's
     printed ratio is over the *fitted* error model's RMS, which differs from it when the
     generator is not the error model). A limit beyond the searched sizes counts as infinite."""
-    import re
     lim, noise = {}, None
     for line in det.splitlines():
         m = re.match(r"^\S+ none ratio \S+ seed \d+.*? noise ([0-9.]+) signal", line)
@@ -59,13 +71,13 @@ def detection_agreement(v, tool, prefix, family, effects, ratios, first_seed, cl
     Writes per effect the tallies {effect}_{ratio}, the onset, the mean reported limit (over the
     size parameters and, unless plus_only, both directions; clean_limits), its range and
     limit / onset."""
-    import re
     out = tool(v, {prefix + "EFFECTS": ",".join(effects), prefix + "RATIOS": ",".join(ratios),
                    prefix + "SEEDS": "10", prefix + "FIRST_SEED": str(first_seed)})
     fr = {}
-    for eff, ratio, named, n in re.findall(rf"^== {family} (\S+) ratio ([0-9.]+): named (\d+) of (\d+)$", out, re.M):
-        fr.setdefault(eff, []).append((float(ratio), int(named) / int(n)))
-        v.figure(f"{eff}_{ratio.replace('.', 'p')}", f"{named}/{n}")
+    for fam, eff, ratio, named, n in tally_lines(out):
+        if fam == family:
+            fr.setdefault(eff, []).append((float(ratio), named / n))
+            v.figure(f"{eff}_{ratio.replace('.', 'p')}", f"{named}/{n}")
     det = tool(v, {prefix + "EFFECTS": "none", prefix + "SEEDS": "4",
                    prefix + "FIRST_SEED": str(clean_first_seed), prefix + "DETECTION": "20"})
     lim = clean_limits(det, plus_only)
@@ -82,7 +94,6 @@ def detection_agreement(v, tool, prefix, family, effects, ratios, first_seed, cl
 def logistic_x80(x, named):
     """The size x (> 0) at which a logistic curve in ln x, fitted by maximum likelihood to
     (x, named 0/1) pairs, gives an 80 % chance of naming; nan without both outcomes."""
-    from math import exp, log
     z = [log(t) for t in x]
     if min(named) == max(named):
         return float("nan")
@@ -120,13 +131,12 @@ def twin_agreement(v, tool, prefix, family, effects, ratios, first_seed, seeds):
     are exact; above 1 they are optimistic), its 95 % bootstrap interval (1000 resamples of the
     sets), the named fraction for x below 1 and at or above 1, and the twins named other than
     none."""
-    import random
-    import re
     out = tool(v, {prefix + "EFFECTS": ",".join(effects), prefix + "RATIOS": ",".join(ratios),
                    prefix + "SEEDS": str(seeds), prefix + "FIRST_SEED": str(first_seed),
                    prefix + "TWIN_DETECTION": "20"})
-    for eff, ratio, named, n in re.findall(rf"^== {family} (\S+) ratio ([0-9.]+): named (\d+) of (\d+)$", out, re.M):
-        v.figure(f"{eff}_{ratio.replace('.', 'p')}", f"{named}/{n}")
+    for fam, eff, ratio, named, n in tally_lines(out):
+        if fam == family:
+            v.figure(f"{eff}_{ratio.replace('.', 'p')}", f"{named}/{n}")
     sets, cur, twin_named = {}, None, 0
     for line in out.splitlines():
         m = re.match(rf"^{family} (\S+) ratio \S+ seed \d+((?: \S+=\S+)*) noise \S+ signal ([0-9.]+).*?: named (\S+) \|", line)
@@ -146,13 +156,6 @@ def twin_agreement(v, tool, prefix, family, effects, ratios, first_seed, seeds):
             if (cur["hidden"][m.group(2)] > float(m.group(6))) == (m.group(3) == "+"):
                 cur["lim"].append(float(m.group(5)))
     rng = random.Random(20261129)
-
-    def percentile(sorted_values, q):
-        k = q / 100.0 * (len(sorted_values) - 1)
-        i = int(k)
-        j = min(i + 1, len(sorted_values) - 1)
-        return sorted_values[i] + (k - i) * (sorted_values[j] - sorted_values[i])
-
     for eff in effects:
         xs = [s["signal"] * len(s["lim"]) / sum(s["lim"]) for s in sets[eff]]
         ys = [1.0 if s["named"] else 0.0 for s in sets[eff]]
@@ -162,10 +165,10 @@ def twin_agreement(v, tool, prefix, family, effects, ratios, first_seed, seeds):
             b = logistic_x80([xs[i] for i in k], [ys[i] for i in k])
             if b == b:
                 boot.append(b)
-        boot.sort()
+        cuts = statistics.quantiles(boot, n=40, method="inclusive")  # 2.5 % steps
         v.figure(f"{eff}_x80", logistic_x80(xs, ys))
-        v.figure(f"{eff}_x80_lo", percentile(boot, 2.5))
-        v.figure(f"{eff}_x80_hi", percentile(boot, 97.5))
+        v.figure(f"{eff}_x80_lo", cuts[0])
+        v.figure(f"{eff}_x80_hi", cuts[-1])
         below = [y for x, y in zip(xs, ys) if x < 1.0]
         above = [y for x, y in zip(xs, ys) if x >= 1.0]
         v.figure(f"{eff}_below", f"{int(sum(below))}/{len(below)}")
@@ -180,15 +183,14 @@ def tallies_at_1_2(v, tool, prefix, families, effects, seeds_effect, first_effec
     `tool(v, env)` (a test binary's correlated sweep, environment keys starting with `prefix`).
     Writes {family}_{effect} and {family}_none tallies ("named/n"), clean_records,
     false_positives and false_positive_upper95_pct."""
-    import re
     clean_none = clean_n = 0
     for effs, seeds, first in ((effects, seeds_effect, first_effect), (["none"], seeds_clean, first_clean)):
         out = tool(v, {prefix + "FAMILIES": ",".join(families), prefix + "EFFECTS": ",".join(effs),
                        prefix + "RATIOS": "1.2", prefix + "SEEDS": str(seeds), prefix + "FIRST_SEED": str(first)})
-        for fam, eff, named, n in re.findall(r"^== (\S+) (\S+) ratio [0-9.]+: named (\d+) of (\d+)$", out, re.M):
+        for fam, eff, _, named, n in tally_lines(out):
             v.figure(f"{fam}_{eff}", f"{named}/{n}")
             if eff == "none":
-                clean_none, clean_n = clean_none + int(named), clean_n + int(n)
+                clean_none, clean_n = clean_none + named, clean_n + n
     v.figure("clean_records", clean_n)
     v.figure("false_positives", clean_n - clean_none)
     v.figure("false_positive_upper95_pct", 100 * false_positive_upper95(clean_n - clean_none, clean_n), "%")
@@ -202,7 +204,6 @@ def sweep_tool(binary, testcase, appended=None, source_dir=False):
     Each run's output (every set's fit, every limit) is kept in the case's folder as
     sweep_<n>.txt, headed by its command, for a reader to audit the tallies."""
     def tool(v, env):
-        import os
         env = dict(env, **(appended or {}))
         rec = " ".join(f"{k}={val}" for k, val in env.items())
         run_env = dict(env, KNEESIM_SOURCE_DIR=v.source) if source_dir else env

@@ -7,7 +7,6 @@ level (white_walk at 1.5 times its unit amplitude, the medial reading's noise 25
 the detection limit the diagnosis reports for a clean record of that family."""
 import importlib.util
 import os
-import re
 
 _spec = importlib.util.spec_from_file_location(
     "kneesim_tallies", os.path.join(os.path.dirname(__file__), "_tallies.py"))
@@ -31,7 +30,7 @@ def onset(v, mm):
     out = tool(v, {"KNEESIM_FORCES_FAMILIES": "white_walk", "KNEESIM_FORCES_EFFECTS": "load_line",
                    "KNEESIM_FORCES_RATIOS": "1.5", "KNEESIM_FORCES_SEEDS": str(SEEDS_ONSET),
                    "KNEESIM_FORCES_FIRST_SEED": "1300", "KNEESIM_FORCES_VALUE": mm})
-    named, n = re.findall(r"^== \S+ \S+ ratio [0-9.]+: named (\d+) of (\d+)$", out, re.M)[0]
+    named, n = T.tally_lines(out)[0][3:]
     return f"{named}/{n}"
 
 

@@ -34,14 +34,14 @@ def run(v):
         for val in values:
             out = tool(v, {"KNEESIM_FORCES_EFFECTS": eff, "KNEESIM_FORCES_SEEDS": "10",
                            "KNEESIM_FORCES_FIRST_SEED": "1300", "KNEESIM_FORCES_VALUE": val})
-            named, n = re.findall(r"^== \S+ \S+ ratio [0-9.]+: named (\d+) of (\d+)$", out, re.M)[0]
+            named, n = T.tally_lines(out)[0][3:]
             v.figure(f"{eff}_{val.replace('.', 'p')}", f"{named}/{n}")
-            fr.append((float(val), int(named) / int(n)))
+            fr.append((float(val), named / n))
         v.figure(f"{eff}_onset", T.onset(fr))
     det = tool(v, {"KNEESIM_FORCES_EFFECTS": "none", "KNEESIM_FORCES_SEEDS": "4",
                    "KNEESIM_FORCES_FIRST_SEED": "1400", "KNEESIM_FORCES_VALUE": "0",
                    "KNEESIM_FORCES_DETECTION": "20"})
-    lim, named_none = {}, 0
+    lim = {}
     for eff, reached, value in re.findall(r"^\s+limit (\S+) \S+?[+-]1: (at|beyond) (\S+), signal", det, re.M):
         lim.setdefault(eff, []).append(abs(float(value)) if reached == "at" else float("inf"))
     for eff in VALUES:
@@ -50,7 +50,7 @@ def run(v):
         v.figure(f"{eff}_limit_lo", min(lim[eff]))
         v.figure(f"{eff}_limit_hi", max(lim[eff]))
         v.figure(f"{eff}_factor", m / v.figures[f"{eff}_onset"]["value"])
-    named, n = re.findall(r"^== \S+ none ratio [0-9.]+: named (\d+) of (\d+)$", det, re.M)[0]
+    named, n = T.tally_lines(det)[0][3:]
     v.figure("clean_named_none", f"{named}/{n}")
 
 

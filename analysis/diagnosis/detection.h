@@ -5,10 +5,12 @@
 // data: the refitted baseline's predictions, plus the effect at that size (its other parameters
 // at their null or initial values), plus noise drawn from the profiled covariance (correlation,
 // specimen random effects) and the nuisance terms' priors, of the model the data support (the
-// named one, or the refitted baseline). Each replicate is diagnosed between
-// `none` and the candidate with the same gates as the real data (AICc drop, held-out drop
-// against none and the trivial predictor, no parameter at a search bound), at the data's
-// fitted noise state; the replicate's threshold size is found by bisection on ln(size) with
+// named one, or the refitted baseline), plus the data's fitted nuisance contribution (a
+// registration offset, a cell's drift). Each replicate is diagnosed among `none` and every
+// candidate with the gates and the selection rule of the real data (AICc drop, held-out drop
+// against none and the trivial predictor, no parameter at a search bound; the lowest AICc,
+// then the tie band's held-out RMSE), at the data's fitted noise state: the effect counts as
+// named only when the selection picks it, not another candidate; the replicate's threshold size is found by bisection on ln(size) with
 // common random numbers, and the limit is the required quantile of those thresholds. So a
 // result `none` reads "no effect larger than the limit": below it, the data could not have
 // told the effect from their noise.

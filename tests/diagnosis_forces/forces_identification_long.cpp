@@ -8,10 +8,13 @@
 // KNEESIM_FORCES_SEEDS, KNEESIM_FORCES_FIRST_SEED, KNEESIM_FORCES_DETECTION = replicates;
 // KNEESIM_FORCES_VALUE = a fixed hidden value, its sign alternating by seed, with the ratio
 // entry then the factor on the family's noise). The skipped test case "forces load-line
-// collinearity" measures how much of each candidate the instrument's columns reproduce.
+// collinearity" measures how much of each candidate the instrument's columns reproduce;
+// "forces forward jitter" the simulated force's roughness in a parameter; "forces effect
+// shape" how the generator's effect differs from the case's forward model of it.
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -199,4 +202,117 @@ TEST_CASE("forces load-line collinearity" * doctest::skip()) {
       }
     }
   }
+}
+
+namespace {
+
+// the case's grid from the environment (KNEESIM_FORCES_GRID; default the diagnosis' own)
+ForcesCaseOptions case_options_from_env() {
+  ForcesCaseOptions fo;
+  if (const char* g = std::getenv("KNEESIM_FORCES_GRID")) fo.grid_points = std::atoi(g);
+  return fo;
+}
+
+double env_or(const char* name, double fallback) {
+  const char* v = std::getenv(name);
+  return v ? std::atof(v) : fallback;
+}
+
+}  // namespace
+
+// The forward model's jitter in a parameter (skipped; run with --no-skip): on a clean
+// white_walk record (seed 1500, noise scale KNEESIM_FORCES_SCALE, default 1.5), the RMS over
+// the rows of the simulated medial force's slope and second difference at step h about
+// several values of each candidate. A smooth response has second differences ~ h^2 x its
+// curvature; the simulation's stay at a few N however small h is: contact on the faceted
+// insert switches discretely.
+TEST_CASE("forces forward jitter" * doctest::skip()) {
+  ForcesBench bench;
+  const ForcesSet s0 = bench.make(Effect::none, 0.0, CellNoise::white_walk, 1500,
+                                  env_or("KNEESIM_FORCES_SCALE", 1.5));
+  auto sim = std::make_shared<ForcesSimulator>(bench.config(), s0.measured.cycles);
+  sim->set_threads(2);
+  const auto& rows = s0.measured.data.rows;
+  const double root_n = std::sqrt(static_cast<double>(rows.size()));
+  for (Effect e : {Effect::vv_alignment, Effect::load_line, Effect::vv_moment}) {
+    auto curve = [&](double v) {
+      Eigen::VectorXd p(static_cast<Eigen::Index>(rows.size()));
+      for (size_t i = 0; i < rows.size(); ++i) {
+        const int k = rows[i].group == "cycle 1" ? 0 : 1;
+        p[static_cast<Eigen::Index>(i)] = sim->run(e, v, k)->share(rows[i].x) * s0.measured.total_N[i];
+      }
+      return p;
+    };
+    for (double h : {0.01, 0.1, 0.5}) {
+      for (double v0 : {-2.0, -1.0, 1.0, 2.0}) {
+        const Eigen::VectorXd a = curve(v0 - h), b = curve(v0), c = curve(v0 + h);
+        std::printf("%s %+.1f h %.2f: slope RMS %.1f N/unit, second difference RMS %.2f N\n",
+                    std::string(effect_name(e)).c_str(), v0, h, (c - a).norm() / root_n / (2.0 * h),
+                    (a - 2.0 * b + c).norm() / root_n);
+      }
+    }
+  }
+}
+
+// The hidden effect's shape against the forward model's (skipped; run with --no-skip): per
+// seed (KNEESIM_FORCES_FIRST_SEED, KNEESIM_FORCES_SEEDS; value KNEESIM_FORCES_VALUE of
+// KNEESIM_FORCES_EFFECTS, default vv_alignment 2, sign alternating) the generator's record
+// with the effect and, with the SAME noise, the clean record plus the case's own predicted
+// effect; both diagnosed. Also the RMS of the generator's effect minus the case's, and of the
+// case's prediction minus a direct simulation at the value. The case's grid from
+// KNEESIM_FORCES_GRID (default: the diagnosis' own).
+TEST_CASE("forces effect shape" * doctest::skip()) {
+  ForcesBench bench;
+  const Effect eff = parse_effect(std::getenv("KNEESIM_FORCES_EFFECTS") ? std::getenv("KNEESIM_FORCES_EFFECTS")
+                                                                       : "vv_alignment",
+                                  "KNEESIM_FORCES_EFFECTS");
+  const double value = env_or("KNEESIM_FORCES_VALUE", 2.0);
+  const int seeds = static_cast<int>(env_or("KNEESIM_FORCES_SEEDS", 12));
+  const auto first = static_cast<std::uint64_t>(env_or("KNEESIM_FORCES_FIRST_SEED", 1500));
+  const double scale = env_or("KNEESIM_FORCES_SCALE", 1.5);
+  DiagnosisOptions opt;
+  opt.bootstrap = 0;
+  opt.detection_replicates = 0;
+  int named_generator = 0, named_model = 0;
+  for (int k = 0; k < seeds; ++k) {
+    const std::uint64_t seed = first + static_cast<std::uint64_t>(k);
+    const double v = value * (k % 2 ? -1.0 : 1.0);
+    const ForcesSet s0 = bench.make(Effect::none, 0.0, CellNoise::white_walk, seed, scale);
+    const ForcesSet s1 = bench.make(eff, v, CellNoise::white_walk, seed, scale);
+    auto sim = std::make_shared<ForcesSimulator>(bench.config(), s0.measured.cycles);
+    sim->set_threads(2);
+    const DiagnosisCase c0 = make_forces_case(s0.measured, sim, case_options_from_env());
+    std::vector<int> rows(c0.measured.rows.size());
+    for (size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<int>(i);
+    const Eigen::VectorXd none, base, pv = Eigen::VectorXd::Constant(1, v);
+    const Eigen::VectorXd f0 = c0.predict(Effect::none, base, none, rows);
+    const Eigen::VectorXd model_effect = c0.predict(eff, base, pv, rows) - f0;
+    double shape2 = 0.0, direct2 = 0.0;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const double gen = s1.measured.data.rows[i].value - s0.measured.data.rows[i].value;
+      shape2 += std::pow(gen - model_effect[static_cast<Eigen::Index>(i)], 2);
+      const int cyc = c0.measured.rows[i].group == "cycle 1" ? 0 : 1;
+      const double direct = (sim->run(eff, v, cyc)->share(c0.measured.rows[i].x) -
+                             sim->run(Effect::none, 0.0, cyc)->share(c0.measured.rows[i].x)) *
+                            s0.measured.total_N[i];
+      direct2 += std::pow(direct - model_effect[static_cast<Eigen::Index>(i)], 2);
+    }
+    DiagnosisCase swapped = c0;
+    for (size_t i = 0; i < rows.size(); ++i) swapped.measured.rows[i].value += model_effect[static_cast<Eigen::Index>(i)];
+    const DiagnosisResult with_model = diagnose(swapped, opt);
+    const DiagnosisResult with_generator =
+        diagnose_forces(make_forces_case(s1.measured, sim, case_options_from_env()), *sim,
+                        s1.measured.total_N, opt).result;
+    named_generator += with_generator.effect() == eff;
+    named_model += with_model.effect() == eff;
+    const double n = static_cast<double>(rows.size());
+    std::printf("seed %llu value %+.2f: generator effect - model effect %.1f N RMS, model - direct "
+                "simulation %.1f N RMS | generator's record named %s, model's effect named %s\n",
+                static_cast<unsigned long long>(seed), v, std::sqrt(shape2 / n), std::sqrt(direct2 / n),
+                std::string(effect_name(with_generator.effect())).c_str(),
+                std::string(effect_name(with_model.effect())).c_str());
+    std::fflush(stdout);
+  }
+  std::printf("== named: generator's effect %d, model's effect %d of %d\n", named_generator,
+              named_model, seeds);
 }

@@ -1,9 +1,9 @@
 """The detection limit a forces diagnosis reports against the size at which hidden effects start
 being named, in the effect's own unit: fixed load-line shifts (mm), stance lever arms (mm) and
-VV alignments (deg), both signs alternating by seed, 10 seeds per size, under one noise level of
+VV alignments (deg), both signs alternating by seed, 20 seeds per size, under one noise level of
 the white_walk cell-noise family (white noise plus a random-walk drift, not the fit's error
 model; tests/diagnosis_forces/forces_synthetic.h) at 1.5 times its unit amplitude; and the
-detection limits (20 replicates) reported for 4 clean records of the same family and noise
+detection limits (20 replicates) reported for 8 clean records of the same family and noise
 level, as the mean of |limit| over both signs. A constant load-line shift is identified by its
 size against the instrument's calibration prior rather than by its ratio to the noise
 (docs/diagnosis.md, "What a load-line shift can be told from"), so sizes, not noise ratios,
@@ -18,7 +18,7 @@ T = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(T)
 
 TITLE = "Forces: reported detection limits against the hidden-effect onset"
-LONG = True  # 150 diagnoses and 4 with detection limits: about 10 minutes
+LONG = True  # 280 diagnoses and 8 with detection limits: about 15 minutes
 VALUES = {"load_line": ["1", "1.5", "2", "3"],
           "vv_moment": ["0.5", "1", "1.5", "2", "3"],
           "vv_alignment": ["0.5", "1", "1.5", "2", "3"]}
@@ -32,13 +32,13 @@ def run(v):
     for eff, values in VALUES.items():
         fr = []
         for val in values:
-            out = tool(v, {"KNEESIM_FORCES_EFFECTS": eff, "KNEESIM_FORCES_SEEDS": "10",
+            out = tool(v, {"KNEESIM_FORCES_EFFECTS": eff, "KNEESIM_FORCES_SEEDS": "20",
                            "KNEESIM_FORCES_FIRST_SEED": "1300", "KNEESIM_FORCES_VALUE": val})
             named, n = T.tally_lines(out)[0][3:]
             v.figure(f"{eff}_{val.replace('.', 'p')}", f"{named}/{n}")
             fr.append((float(val), named / n))
         v.figure(f"{eff}_onset", T.onset(fr))
-    det = tool(v, {"KNEESIM_FORCES_EFFECTS": "none", "KNEESIM_FORCES_SEEDS": "4",
+    det = tool(v, {"KNEESIM_FORCES_EFFECTS": "none", "KNEESIM_FORCES_SEEDS": "8",
                    "KNEESIM_FORCES_FIRST_SEED": "1400", "KNEESIM_FORCES_VALUE": "0",
                    "KNEESIM_FORCES_DETECTION": "20"})
     lim = {}
@@ -55,11 +55,11 @@ def run(v):
 
 
 TABLE = """
-| effect (unit) | named at each size (both signs) | onset (80 % named) | reported limit: mean of abs(limit) (range over signs and 4 clean records) | limit / onset |
+| effect (unit) | named at each size (both signs) | onset (80 % named) | reported limit: mean of abs(limit) (range over signs and 8 clean records) | limit / onset |
 |---|---|---|---|---|
 | load_line (mm) | 1: {load_line_1} / 1.5: {load_line_1p5} / 2: {load_line_2} / 3: {load_line_3} | {load_line_onset:.2f} | {load_line_limit:.2f} ({load_line_limit_lo:.2f}-{load_line_limit_hi:.2f}) | {load_line_factor:.2f} |
 | vv_moment (stance arm, mm) | 0.5: {vv_moment_0p5} / 1: {vv_moment_1} / 1.5: {vv_moment_1p5} / 2: {vv_moment_2} / 3: {vv_moment_3} | {vv_moment_onset:.2f} | {vv_moment_limit:.2f} ({vv_moment_limit_lo:.2f}-{vv_moment_limit_hi:.2f}) | {vv_moment_factor:.2f} |
 | vv_alignment (deg) | 0.5: {vv_alignment_0p5} / 1: {vv_alignment_1} / 1.5: {vv_alignment_1p5} / 2: {vv_alignment_2} / 3: {vv_alignment_3} | {vv_alignment_onset:.2f} | {vv_alignment_limit:.2f} ({vv_alignment_limit_lo:.2f}-{vv_alignment_limit_hi:.2f}) | {vv_alignment_factor:.2f} |
 
-The 4 clean records named none: {clean_named_none}.
+The 8 clean records named none: {clean_named_none}.
 """

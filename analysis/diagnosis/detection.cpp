@@ -343,9 +343,9 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
 
       // named as the diagnosis names: the candidate passes every gate and the selection
       // among all supported candidates (lowest AICc, then the tie band's held-out RMSE)
-      // picks it; an effect another candidate explains as well is not identified (forces:
-      // a varus-valgus alignment lost to the load line and the varus-valgus moment, which a
-      // comparison with none alone counted as named: the limit 2.7 times optimistic)
+      // picks it; an effect another candidate explains as well is not identified. The other
+      // candidates are fitted from their null points; one whose AICc lies beyond e's tie
+      // band cannot be named instead of e and skips its held-out refits
       auto named = [&](int r, double u) {
         const Eigen::VectorXd pe = params_at(u);
         Eigen::VectorXd y = f0 + (predict(pb, e, full(pe), rows) - f0) + draws[static_cast<size_t>(r)];
@@ -378,7 +378,6 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
           }
           ModelFit mo = fit_candidate_fixed_noise(pb, y, o, full(null_point(case_effect_params(pb.c, o))),
                                                   nz, false);
-          // beyond the tie band of e's AICc it cannot be named instead of e: no held-out refits
           const bool contends = !options.rank_by_aicc || mo.aicc <= m.aicc + options.tie_aicc;
           if (contends && gate(mo)) supported.push_back(index);
           sel.candidates.push_back(std::move(mo));

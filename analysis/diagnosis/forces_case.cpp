@@ -324,6 +324,22 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
                           "]: beyond it a condyle lifts off and the simulation stops";
     }
   }
+  // the forward model's error realizations: at each interior grid value of each candidate,
+  // the simulation minus the mean of its neighbours, times sqrt(2/3) (the three values'
+  // independent jitter then has the variance of one); the response's own curvature over one
+  // grid spacing is small against the jitter (forces forward jitter test)
+  for (Effect e : c.candidates) {
+    const auto& t = sur->tables.at(e);
+    for (int g = 1; g + 1 <= t.hi - t.lo; ++g) {
+      Eigen::VectorXd r(static_cast<Eigen::Index>(c.measured.rows.size()));
+      for (size_t i = 0; i < c.measured.rows.size(); ++i) {
+        const auto& y = t.y[i];
+        r[static_cast<Eigen::Index>(i)] =
+            std::sqrt(2.0 / 3.0) * (y[static_cast<size_t>(g)] - 0.5 * (y[static_cast<size_t>(g - 1)] + y[static_cast<size_t>(g + 1)]));
+      }
+      c.forward_error_draws.push_back(r);
+    }
+  }
   c.effect_params = [sur](Effect e) {
     auto specs = effect_info(e).params;
     if (sur->tables.count(e) && sur->usable(e)) {

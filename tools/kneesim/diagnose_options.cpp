@@ -16,7 +16,7 @@ void add_diagnose_common_options(CLI::App* cmd, DiagnoseCommonOptions& o) {
   cmd->add_option("--out", o.out, "output folder")->capture_default_str();
   cmd->add_option("--bootstrap", o.bootstrap, "bootstrap resamples for the 95 % intervals")
       ->capture_default_str()->check(whole_range(0, 100000));
-  cmd->add_option("--seed", o.seed, "bootstrap seed")
+  cmd->add_option("--seed", o.seed, "seed of the bootstrap and of the detection-limit replicates")
       ->capture_default_str()->check(whole_range(0, kMaxSeed));
   cmd->add_option("--ic-threshold", o.ic_threshold,
                   "AICc drop against 'none' an effect must exceed")

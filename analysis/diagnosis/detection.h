@@ -12,8 +12,9 @@
 // candidate with the gates and the selection rule of the real data (AICc drop, held-out drop
 // against none and the trivial predictor, no parameter at a search bound; the lowest AICc,
 // then the tie band's held-out RMSE), at the data's fitted noise state: the effect counts as
-// named only when the selection picks it, not another candidate; the replicate's threshold size is found by bisection on ln(size) with
-// common random numbers, and the limit is the required quantile of those thresholds. So a
+// named only when the selection picks it, not another candidate. The replicate's threshold
+// size is found by bisection on ln(size) with common random numbers, and the limit is the
+// required quantile of those thresholds. So a
 // result `none` reads "no effect larger than the limit": below it, the data could not have
 // told the effect from their noise.
 //

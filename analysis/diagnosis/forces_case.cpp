@@ -326,8 +326,9 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
   }
   // the forward model's error realizations: at each interior grid value of each candidate,
   // the simulation minus the mean of its neighbours, times sqrt(2/3) (the three values'
-  // independent jitter then has the variance of one); the response's own curvature over one
-  // grid spacing is small against the jitter (forces forward jitter test)
+  // independent jitter then has the variance of one). The response's own curvature over a
+  // grid spacing enters too: on the synthetic record they are 3-14 N RMS, against 7 N RMS
+  // between the interpolated 2 deg alignment and a direct simulation (forces effect shape)
   for (Effect e : c.candidates) {
     const auto& t = sur->tables.at(e);
     for (int g = 1; g + 1 <= t.hi - t.lo; ++g) {

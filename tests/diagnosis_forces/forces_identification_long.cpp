@@ -282,6 +282,14 @@ TEST_CASE("forces effect shape" * doctest::skip()) {
     auto sim = std::make_shared<ForcesSimulator>(bench.config(), s0.measured.cycles);
     sim->set_threads(2);
     const DiagnosisCase c0 = make_forces_case(s0.measured, sim, case_options_from_env());
+    if (k == 0) {  // the detection replicates' forward-error realizations (forces_case.cpp)
+      double lo = 1e300, hi = 0.0;
+      for (const auto& d : c0.forward_error_draws) {
+        const double rms = d.norm() / std::sqrt(static_cast<double>(d.size()));
+        lo = std::min(lo, rms), hi = std::max(hi, rms);
+      }
+      std::printf("%zu forward-error realizations, %.1f-%.1f N RMS\n", c0.forward_error_draws.size(), lo, hi);
+    }
     std::vector<int> rows(c0.measured.rows.size());
     for (size_t i = 0; i < rows.size(); ++i) rows[i] = static_cast<int>(i);
     const Eigen::VectorXd none, base, pv = Eigen::VectorXd::Constant(1, v);

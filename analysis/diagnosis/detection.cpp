@@ -359,14 +359,18 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
         Eigen::VectorXd y = f0 + (predict(pb, e, full(pe), rows) - f0) + draws[static_cast<size_t>(r)];
         if (fitted_nuisance.size() == y.size()) y += fitted_nuisance;
         ModelFit n0 = fit_candidate_fixed_noise(pb, y, Effect::none, base, nz, false);
-        n0.heldout_rmse =
-            score(pb, y, heldout_predictions(pb, y, Effect::none, n0.specs, n0.params, nz));
         ModelFit trivial;
-        trivial.heldout_rmse = options.trivial_gate ? trivial_predictor(pb, y, nz).heldout_rmse : 0.0;
+        bool heldout_references = false;  // none's and the trivial predictor's, when first needed
         auto gate = [&](ModelFit& m) {
           m.at_bound = find_params_at_bound(m.specs, m.params);
           m.passes_gates = m.aicc < n0.aicc - ic && m.at_bound.empty();
           if (!m.passes_gates) return false;
+          if (!heldout_references) {
+            n0.heldout_rmse =
+                score(pb, y, heldout_predictions(pb, y, Effect::none, n0.specs, n0.params, nz));
+            if (options.trivial_gate) trivial.heldout_rmse = trivial_predictor(pb, y, nz).heldout_rmse;
+            heldout_references = true;
+          }
           m.heldout_rmse = score(pb, y, heldout_predictions(pb, y, m.effect, m.specs, m.params, nz));
           m.passes_gates = passes_gates(m, n0, options);
           m.beats_trivial = beats_trivial(m, trivial, options);

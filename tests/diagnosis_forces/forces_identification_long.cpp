@@ -45,6 +45,18 @@ CellNoise family_of(const std::string& name) {
   return CellNoise::white_walk;
 }
 
+// the medial force of every row of `m` from a direct simulation of `e` at `v` (the rig's
+// medial share times the measured total)
+Eigen::VectorXd direct_medial(ForcesSimulator& sim, const ForcesMeasured& m, Effect e, double v) {
+  const auto& rows = m.data.rows;
+  Eigen::VectorXd p(static_cast<Eigen::Index>(rows.size()));
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const int k = rows[i].group == "cycle 1" ? 0 : 1;
+    p[static_cast<Eigen::Index>(i)] = sim.run(e, v, k)->share(rows[i].x) * m.total_N[i];
+  }
+  return p;
+}
+
 }  // namespace
 
 TEST_CASE("forces sweep" * doctest::skip()) {
@@ -136,14 +148,7 @@ TEST_CASE("forces load-line collinearity" * doctest::skip()) {
   for (double t : s.measured.total_N) tmax = std::max(tmax, t);
   double tm = 0.0;
   for (double t : s.measured.time_s) tm += t / static_cast<double>(n);
-  auto pred = [&](Effect e, double v) {
-    Eigen::VectorXd p(static_cast<Eigen::Index>(n));
-    for (size_t i = 0; i < n; ++i) {
-      const int k = rows[i].group == "cycle 1" ? 0 : 1;
-      p[static_cast<Eigen::Index>(i)] = sim->run(e, v, k)->share(rows[i].x) * s.measured.total_N[i];
-    }
-    return p;
-  };
+  auto pred = [&](Effect e, double v) { return direct_medial(*sim, s.measured, e, v); };
   const Eigen::VectorXd p0 = pred(Effect::none, 0.0);
   const auto ni = static_cast<Eigen::Index>(n);
   Eigen::VectorXd total(ni);
@@ -232,17 +237,9 @@ TEST_CASE("forces forward jitter" * doctest::skip()) {
                                   env_or("KNEESIM_FORCES_SCALE", 1.5));
   auto sim = std::make_shared<ForcesSimulator>(bench.config(), s0.measured.cycles);
   sim->set_threads(2);
-  const auto& rows = s0.measured.data.rows;
-  const double root_n = std::sqrt(static_cast<double>(rows.size()));
+  const double root_n = std::sqrt(static_cast<double>(s0.measured.data.rows.size()));
   for (Effect e : {Effect::vv_alignment, Effect::load_line, Effect::vv_moment}) {
-    auto curve = [&](double v) {
-      Eigen::VectorXd p(static_cast<Eigen::Index>(rows.size()));
-      for (size_t i = 0; i < rows.size(); ++i) {
-        const int k = rows[i].group == "cycle 1" ? 0 : 1;
-        p[static_cast<Eigen::Index>(i)] = sim->run(e, v, k)->share(rows[i].x) * s0.measured.total_N[i];
-      }
-      return p;
-    };
+    auto curve = [&](double v) { return direct_medial(*sim, s0.measured, e, v); };
     for (double h : {0.01, 0.1, 0.5}) {
       for (double v0 : {-2.0, -1.0, 1.0, 2.0}) {
         const Eigen::VectorXd a = curve(v0 - h), b = curve(v0), c = curve(v0 + h);
@@ -295,16 +292,14 @@ TEST_CASE("forces effect shape" * doctest::skip()) {
     const Eigen::VectorXd none, base, pv = Eigen::VectorXd::Constant(1, v);
     const Eigen::VectorXd f0 = c0.predict(Effect::none, base, none, rows);
     const Eigen::VectorXd model_effect = c0.predict(eff, base, pv, rows) - f0;
-    double shape2 = 0.0, direct2 = 0.0;
+    const Eigen::VectorXd direct_effect =
+        direct_medial(*sim, s0.measured, eff, v) - direct_medial(*sim, s0.measured, Effect::none, 0.0);
+    double shape2 = 0.0;
     for (size_t i = 0; i < rows.size(); ++i) {
       const double gen = s1.measured.data.rows[i].value - s0.measured.data.rows[i].value;
       shape2 += std::pow(gen - model_effect[static_cast<Eigen::Index>(i)], 2);
-      const int cyc = c0.measured.rows[i].group == "cycle 1" ? 0 : 1;
-      const double direct = (sim->run(eff, v, cyc)->share(c0.measured.rows[i].x) -
-                             sim->run(Effect::none, 0.0, cyc)->share(c0.measured.rows[i].x)) *
-                            s0.measured.total_N[i];
-      direct2 += std::pow(direct - model_effect[static_cast<Eigen::Index>(i)], 2);
     }
+    const double direct2 = (direct_effect - model_effect).squaredNorm();
     DiagnosisCase swapped = c0;
     for (size_t i = 0; i < rows.size(); ++i) swapped.measured.rows[i].value += model_effect[static_cast<Eigen::Index>(i)];
     const DiagnosisResult with_model = diagnose(swapped, opt);

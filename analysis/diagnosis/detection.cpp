@@ -291,8 +291,7 @@ DetectionResult detection_limits(const Problem& pb_data, const DiagnosisResult& 
       if (tau > 0.0) e += tau * normal(rng) * xn.col(static_cast<Eigen::Index>(j));
     }
     // the forward model's own error (DiagnosisCase::forward_error_draws): a real effect is
-    // not the model's effect exactly; without it the forces VV alignment's limit was 1.12 deg
-    // against an onset of 2.2-3.0 deg
+    // not the model's effect exactly, and the replicates must not be cleaner than the data
     if (!pb.c.forward_error_draws.empty()) {
       std::uniform_int_distribution<size_t> pick(0, pb.c.forward_error_draws.size() - 1);
       const Eigen::VectorXd& fe = pb.c.forward_error_draws[pick(rng)];

@@ -97,8 +97,9 @@ struct DiagnosisCase {
   bool expensive_forward = false;
   // realizations (every row) of the forward model's own error against a direct simulation:
   // the detection replicates add one, drawn at random, to each simulated data set, since a
-  // real effect differs from the model's by at least that much (forces: the simulated force
-  // jitters between close parameter values); empty: the model's effect is taken as exact
+  // real effect differs from the model's by at least that much (forces: a direct simulation
+  // between grid values against the interpolated grid); empty: the model's effect is taken as
+  // exact
   std::vector<Eigen::VectorXd> forward_error_draws;
 
   // effect parameter specs for this case (bounds, starts); default: effect_info(e).params

@@ -12,10 +12,12 @@
 // is re-seated on the insert under the t = 0 load after every change (an aligned femur must
 // not start inside the insert).
 //
-// Output per cycle: the medial and lateral compartment forces, one sample per 1 %: the
-// simulated axial contact force split in the ratio of the condyles' normal forces (the load
-// cells measure axial force; the engine sums normal forces per condyle, which lean by the
-// coronal contact angle, a few degrees on this insert).
+// Output per cycle: the medial and lateral compartment forces, one sample per 1 %, each the
+// mean over its own 1 % of the cycle (the contact's chatter, sampled at an instant, aliased
+// into the force as jitter between close parameter values): the simulated axial contact
+// force split in the ratio of the condyles' normal forces (the load cells measure axial
+// force; the engine sums normal forces per condyle, which lean by the coronal contact angle,
+// a few degrees on this insert).
 //
 // Every evaluation is a full simulation; results are cached by (effect, parameter, cycle), and
 // run_grid() evaluates a parameter grid (the diagnosis interpolates between grid points,

@@ -71,10 +71,11 @@ TEST_CASE("forces: a clean record reports detection limits for every candidate a
     if (d.effect != Effect::vv_alignment) CHECK(d.reached);
     // the load-line limit against where the hidden-effect records start naming it: under this
     // family's noise (white_walk at 1.5 times its unit amplitude, 25-81 N RMS) fixed shifts of
-    // 1 mm are named in 0 of 10 records and of 2 mm in 10 of 10 (docs/validation.md, forces
-    // hidden-effect tests); the limit must lie within a factor 1.5 of that onset
+    // 1, 1.5, 2 and 3 mm are named in 0, 2, 8 and 10 of 10 records (onset 2.0 mm;
+    // docs/validation.md, forces hidden-effect tests); the limit must lie within a factor 1.5
+    // of that onset
     if (d.effect == Effect::load_line) {
-      CHECK(std::abs(d.value) > 1.0 / 1.5);
+      CHECK(std::abs(d.value) > 2.0 / 1.5);
       CHECK(std::abs(d.value) < 2.0 * 1.5);
     }
   }

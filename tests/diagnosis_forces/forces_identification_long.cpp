@@ -45,18 +45,6 @@ CellNoise family_of(const std::string& name) {
   return CellNoise::white_walk;
 }
 
-// the medial force of every row of `m` from a direct simulation of `e` at `v` (the rig's
-// medial share times the measured total)
-Eigen::VectorXd direct_medial(ForcesSimulator& sim, const ForcesMeasured& m, Effect e, double v) {
-  const auto& rows = m.data.rows;
-  Eigen::VectorXd p(static_cast<Eigen::Index>(rows.size()));
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const int k = rows[i].group == "cycle 1" ? 0 : 1;
-    p[static_cast<Eigen::Index>(i)] = sim.run(e, v, k)->share(rows[i].x) * m.total_N[i];
-  }
-  return p;
-}
-
 }  // namespace
 
 TEST_CASE("forces sweep" * doctest::skip()) {

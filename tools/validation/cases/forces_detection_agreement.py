@@ -21,7 +21,7 @@ TITLE = "Forces: reported detection limits against the hidden-effect onset"
 LONG = True  # 280 diagnoses and 8 with detection limits: about 15 minutes
 VALUES = {"load_line": ["1", "1.5", "2", "3"],
           "vv_moment": ["0.5", "1", "1.5", "2", "3"],
-          "vv_alignment": ["0.5", "1", "1.5", "2", "3"]}
+          "vv_alignment": ["1", "2", "2.5", "3", "4"]}
 NOISE = "1.5"
 
 tool = T.sweep_tool("tests/diagnosis_forces/test_diagnosis_forces_long", "forces sweep",
@@ -59,7 +59,7 @@ TABLE = """
 |---|---|---|---|---|
 | load_line (mm) | 1: {load_line_1} / 1.5: {load_line_1p5} / 2: {load_line_2} / 3: {load_line_3} | {load_line_onset:.2f} | {load_line_limit:.2f} ({load_line_limit_lo:.2f}-{load_line_limit_hi:.2f}) | {load_line_factor:.2f} |
 | vv_moment (stance arm, mm) | 0.5: {vv_moment_0p5} / 1: {vv_moment_1} / 1.5: {vv_moment_1p5} / 2: {vv_moment_2} / 3: {vv_moment_3} | {vv_moment_onset:.2f} | {vv_moment_limit:.2f} ({vv_moment_limit_lo:.2f}-{vv_moment_limit_hi:.2f}) | {vv_moment_factor:.2f} |
-| vv_alignment (deg) | 0.5: {vv_alignment_0p5} / 1: {vv_alignment_1} / 1.5: {vv_alignment_1p5} / 2: {vv_alignment_2} / 3: {vv_alignment_3} | {vv_alignment_onset:.2f} | {vv_alignment_limit:.2f} ({vv_alignment_limit_lo:.2f}-{vv_alignment_limit_hi:.2f}) | {vv_alignment_factor:.2f} |
+| vv_alignment (deg) | 1: {vv_alignment_1} / 2: {vv_alignment_2} / 2.5: {vv_alignment_2p5} / 3: {vv_alignment_3} / 4: {vv_alignment_4} | {vv_alignment_onset:.2f} | {vv_alignment_limit:.2f} ({vv_alignment_limit_lo:.2f}-{vv_alignment_limit_hi:.2f}) | {vv_alignment_factor:.2f} |
 
 The 8 clean records named none: {clean_named_none}.
 """

@@ -165,7 +165,7 @@ std::shared_ptr<const ForcesTrace> ForcesSimulator::simulate(Effect effect, doub
     std::array<double, 4> a = {f.contact.normal_force[0], f.contact.normal_force[1],
                                f.contact.force_W.y(), 1.0};  // the instant if no mean
     const size_t k = static_cast<size_t>(std::lround(f.gait_pct / 100.0 * frames)) % static_cast<size_t>(frames);
-    if (k < sums.size() && sums[k][3] > 0.0) a = sums[k];
+    if (!instant_samples_ && k < sums.size() && sums[k][3] > 0.0) a = sums[k];
     const double med = a[0] / a[3], lat = a[1] / a[3];
     const double axial = a[2] / a[3];  // axial contact force (+ compressive)
     const double share = med + lat > 0.0 ? med / (med + lat) : 0.5;

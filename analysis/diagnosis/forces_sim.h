@@ -73,6 +73,12 @@ class ForcesSimulator {
   // Model (results do not depend on the thread count)
   void run_many(const std::vector<Key>& keys);
   void set_threads(int threads) { threads_ = threads; }
+  // samples at an instant instead of the means over their 1 % (diagnostics of the aliasing
+  // the means remove; forces_sim_test.cpp); clears the cache
+  void set_instant_samples(bool instant) {
+    instant_samples_ = instant;
+    cache_.clear();
+  }
 
   // `kneesim run` overrides that reproduce run(effect, value, .)
   std::string equivalent_sets(Effect effect, double value) const;
@@ -94,6 +100,7 @@ class ForcesSimulator {
   std::shared_ptr<const ForcesTrace> simulate(Effect effect, double value, int cycle) const;
   std::map<std::tuple<int, double, int>, std::shared_ptr<const ForcesTrace>> cache_;
   int threads_ = 1;
+  bool instant_samples_ = false;
   int simulations_ = 0;
   double seconds_ = 0.0;
   double build_seconds_ = 0.0;

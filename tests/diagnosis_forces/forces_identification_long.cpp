@@ -217,14 +217,16 @@ double env_or(const char* name, double fallback) {
 // white_walk record (seed 1500, noise scale KNEESIM_FORCES_SCALE, default 1.5), the RMS over
 // the rows of the simulated medial force's slope and second difference at step h about
 // several values of each candidate. A smooth response has second differences ~ h^2 x its
-// curvature; the simulation's stay at a few N however small h is: contact on the faceted
-// insert switches discretely.
+// curvature; the simulation's stay at tenths of a newton to a few N however small h is:
+// contact on the faceted insert switches discretely. KNEESIM_FORCES_INSTANT=1: samples at an
+// instant instead of the means over their 1 % (the aliasing the means remove).
 TEST_CASE("forces forward jitter" * doctest::skip()) {
   ForcesBench bench;
   const ForcesSet s0 = bench.make(Effect::none, 0.0, CellNoise::white_walk, 1500,
                                   env_or("KNEESIM_FORCES_SCALE", 1.5));
   auto sim = std::make_shared<ForcesSimulator>(bench.config(), s0.measured.cycles);
   sim->set_threads(2);
+  sim->set_instant_samples(env_or("KNEESIM_FORCES_INSTANT", 0.0) != 0.0);
   const double root_n = std::sqrt(static_cast<double>(s0.measured.data.rows.size()));
   for (Effect e : {Effect::vv_alignment, Effect::load_line, Effect::vv_moment}) {
     auto curve = [&](double v) { return direct_medial(*sim, s0.measured, e, v); };

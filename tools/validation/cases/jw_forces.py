@@ -10,7 +10,7 @@ TITLE = "Diagnosis of the JW in-vivo compartment forces against the rig"
 # each cell's gain and each crosstalk fraction sd 0.02, so a gain difference sd 0.02 sqrt(2)
 CROSSTALK_PRIOR_SD = 0.02
 GAIN_DIFFERENCE_PRIOR_SD = 0.02 * math.sqrt(2.0)
-LONG = True  # 56 rig simulations of 2 cycles: 1-3 minutes
+LONG = True  # 94 rig simulations of 2 cycles, twice: 15-60 s
 # a wall time on a shared machine: recorded, not compared (21-57 s between two runs of one build)
 NOISY = {"wall_s": math.inf}
 IMAGES = {"docs/img/forces_jw_diagnosis.png": "jw/diagnosis.png"}

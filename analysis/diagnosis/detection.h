@@ -7,8 +7,8 @@
 // specimen random effects) and the nuisance terms' priors, of the model the data support (the
 // named one, or the refitted baseline), plus the data's fitted nuisance contribution (a
 // registration offset, a cell's drift), plus, where the case supplies them, one realization
-// of the forward model's own error (DiagnosisCase::forward_error_draws: the forces rig's
-// jitter between close parameter values). Each replicate is diagnosed among `none` and every
+// of the forward model's own error (DiagnosisCase::forward_error_draws: for forces, a direct
+// simulation between grid values against the interpolated grid). Each replicate is diagnosed among `none` and every
 // candidate with the gates and the selection rule of the real data (AICc drop, held-out drop
 // against none and the trivial predictor, no parameter at a search bound; the lowest AICc,
 // then the tie band's held-out RMSE), at the data's fitted noise state: the effect counts as

@@ -40,6 +40,19 @@ loads::Waveform phase_waveform(const loads::MeasuredLoads& L, const std::vector<
   return loads::Waveform::from_table(names, pct, cols, L.source + " [other cycle]");
 }
 
+// the simulator's cycle of each row (by the row's group, the cycle's name)
+std::vector<int> cycle_of_rows(const ForcesSimulator& sim, const MeasuredData& data) {
+  std::vector<int> out;
+  for (const auto& row : data.rows) {
+    int k = 0;
+    for (int i = 0; i < sim.cycles(); ++i) {
+      if (sim.cycle(i).name == row.group) k = i;
+    }
+    out.push_back(k);
+  }
+  return out;
+}
+
 // Catmull-Rom interpolation through equally spaced values y at fractional index s
 double catmull_rom(const std::vector<double>& y, double s) {
   const int n = static_cast<int>(y.size());
@@ -300,13 +313,7 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
   sur->sim = sim;
   sur->measured = std::make_shared<const MeasuredData>(c.measured);
   sur->total = m.total_N;
-  for (const auto& row : c.measured.rows) {
-    int k = 0;
-    for (int i = 0; i < sim->cycles(); ++i) {
-      if (sim->cycle(i).name == row.group) k = i;
-    }
-    sur->cycle_of_row.push_back(k);
-  }
+  sur->cycle_of_row = cycle_of_rows(*sim, c.measured);
   // every candidate's grid at once (the simulator runs them in parallel)
   sur->build(options.candidates, options.grid_points);
   for (Effect e : options.candidates) {
@@ -338,16 +345,11 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
         for (int k = 0; k < sim->cycles(); ++k) keys.push_back({e, mids.back().second, k});
       }
     }
-    sim->run_many(keys);
+    sim->run_many(keys);  // all midpoints at once (in parallel)
     for (const auto& [e, v] : mids) {
-      Eigen::VectorXd r(static_cast<Eigen::Index>(c.measured.rows.size()));
-      bool ok = true;
-      for (size_t i = 0; i < c.measured.rows.size() && ok; ++i) {
-        const auto trace = sim->run(e, v, sur->cycle_of_row[i]);
-        ok = trace->ok;
-        r[static_cast<Eigen::Index>(i)] = ok ? sur->medial(*trace, static_cast<int>(i)) - sur->at(e, v, static_cast<int>(i)) : 0.0;
-      }
-      if (ok) c.forward_error_draws.push_back(r);
+      Eigen::VectorXd r = simulated_medial(*sim, m, e, v);
+      for (Eigen::Index i = 0; i < r.size(); ++i) r[i] -= sur->at(e, v, static_cast<int>(i));
+      if (r.allFinite()) c.forward_error_draws.push_back(r);
     }
   }
   c.effect_params = [sur](Effect e) {
@@ -429,6 +431,23 @@ DiagnosisCase make_forces_case(const ForcesMeasured& m, std::shared_ptr<ForcesSi
     return out;
   };
   return c;
+}
+
+Eigen::VectorXd simulated_medial(ForcesSimulator& sim, const ForcesMeasured& measured,
+                                 Effect effect, double value) {
+  const std::vector<int> cycle = cycle_of_rows(sim, measured.data);
+  std::vector<ForcesSimulator::Key> keys;
+  for (int k = 0; k < sim.cycles(); ++k) keys.push_back({effect, value, k});
+  sim.run_many(keys);
+  std::vector<std::shared_ptr<const ForcesTrace>> traces;
+  for (int k = 0; k < sim.cycles(); ++k) traces.push_back(sim.run(effect, value, k));
+  Eigen::VectorXd p(static_cast<Eigen::Index>(measured.data.rows.size()));
+  for (size_t i = 0; i < measured.data.rows.size(); ++i) {
+    const ForcesTrace& t = *traces[static_cast<size_t>(cycle[i])];
+    p[static_cast<Eigen::Index>(i)] =
+        t.ok ? t.share(measured.data.rows[i].x) * measured.total_N[i] : NAN;
+  }
+  return p;
 }
 
 }  // namespace kneesim::diagnosis

@@ -91,4 +91,10 @@ DiagnosisCase make_forces_case(const ForcesMeasured& measured,
                                std::shared_ptr<ForcesSimulator> sim,
                                const ForcesCaseOptions& options = {});
 
+// the forward model's prediction of every row of `measured` from a direct simulation of
+// `effect` at `value` (no grid): the rig's medial share at the row's gait % times the row's
+// measured total [N]; NaN in every row of a cycle whose simulation stopped
+Eigen::VectorXd simulated_medial(ForcesSimulator& sim, const ForcesMeasured& measured,
+                                 Effect effect, double value);
+
 }  // namespace kneesim::diagnosis

@@ -140,20 +140,23 @@ std::shared_ptr<const ForcesTrace> ForcesSimulator::simulate(Effect effect, doub
   // difference over 0.5 deg of alignment 10-14 N RMS at an instant, 2-3 N as the mean;
   // forces forward jitter). The mean is the anti-aliasing filter a decimation needs
   const int frames = ro.frames_per_cycle;
-  std::vector<std::array<double, 4>> sums;  // medial, lateral, axial [N], steps
-  ro.observer = [&sums, frames](const engine::Model& m, const engine::State& s,
-                                const engine::Data& d) {
-    if (sums.empty()) sums.assign(static_cast<size_t>(frames), {0.0, 0.0, 0.0, 0.0});
-    // the data describe the start of the step just taken; the last cycle starts at a
-    // multiple of the period
-    const double phase = std::fmod((s.time - m.dt) / m.period, 1.0);
-    const int k = static_cast<int>(std::floor(phase * frames + 0.5)) % frames;
-    auto& a = sums[static_cast<size_t>(std::max(k, 0))];
-    a[0] += d.contact.normal_force[0];
-    a[1] += d.contact.normal_force[1];
-    a[2] += d.contact.force_W.y();
-    a[3] += 1.0;
-  };
+  // per frame of the last cycle: medial, lateral, axial [N], steps
+  std::vector<std::array<double, 4>> sums;
+  if (!instant_samples_) {
+    ro.observer = [&sums, frames](const engine::Model& m, const engine::State& s,
+                                  const engine::Data& d) {
+      if (sums.empty()) sums.assign(static_cast<size_t>(frames), {0.0, 0.0, 0.0, 0.0});
+      // the data describe the start of the step just taken; the last cycle starts at a
+      // multiple of the period, and frame k at k / frames of it
+      const double phase = std::fmod((s.time - m.dt) / m.period, 1.0);
+      const int k = static_cast<int>(std::floor(phase * frames + 0.5)) % frames;
+      auto& a = sums[static_cast<size_t>(std::max(k, 0))];
+      a[0] += d.contact.normal_force[0];
+      a[1] += d.contact.normal_force[1];
+      a[2] += d.contact.force_W.y();
+      a[3] += 1.0;
+    };
+  }
   const engine::RunResult r = engine::simulate_with_retry(model, state, ro, built_.dt_safety, 4,
                                                           [&sums] { sums.clear(); });
 
@@ -164,8 +167,7 @@ std::shared_ptr<const ForcesTrace> ForcesSimulator::simulate(Effect effect, doub
     const engine::Frame& f = r.frames[i];
     std::array<double, 4> a = {f.contact.normal_force[0], f.contact.normal_force[1],
                                f.contact.force_W.y(), 1.0};  // the instant if no mean
-    const size_t k = static_cast<size_t>(std::lround(f.gait_pct / 100.0 * frames)) % static_cast<size_t>(frames);
-    if (!instant_samples_ && k < sums.size() && sums[k][3] > 0.0) a = sums[k];
+    if (i < sums.size() && sums[i][3] > 0.0) a = sums[i];
     const double med = a[0] / a[3], lat = a[1] / a[3];
     const double axial = a[2] / a[3];  // axial contact force (+ compressive)
     const double share = med + lat > 0.0 ? med / (med + lat) : 0.5;

@@ -136,7 +136,7 @@ TEST_CASE("forces load-line collinearity" * doctest::skip()) {
   for (double t : s.measured.total_N) tmax = std::max(tmax, t);
   double tm = 0.0;
   for (double t : s.measured.time_s) tm += t / static_cast<double>(n);
-  auto pred = [&](Effect e, double v) { return direct_medial(*sim, s.measured, e, v); };
+  auto pred = [&](Effect e, double v) { return simulated_medial(*sim, s.measured, e, v); };
   const Eigen::VectorXd p0 = pred(Effect::none, 0.0);
   const auto ni = static_cast<Eigen::Index>(n);
   Eigen::VectorXd total(ni);
@@ -229,7 +229,7 @@ TEST_CASE("forces forward jitter" * doctest::skip()) {
   sim->set_instant_samples(env_or("KNEESIM_FORCES_INSTANT", 0.0) != 0.0);
   const double root_n = std::sqrt(static_cast<double>(s0.measured.data.rows.size()));
   for (Effect e : {Effect::vv_alignment, Effect::load_line, Effect::vv_moment}) {
-    auto curve = [&](double v) { return direct_medial(*sim, s0.measured, e, v); };
+    auto curve = [&](double v) { return simulated_medial(*sim, s0.measured, e, v); };
     for (double h : {0.01, 0.1, 0.5}) {
       for (double v0 : {-2.0, -1.0, 1.0, 2.0}) {
         const Eigen::VectorXd a = curve(v0 - h), b = curve(v0), c = curve(v0 + h);
@@ -283,7 +283,7 @@ TEST_CASE("forces effect shape" * doctest::skip()) {
     const Eigen::VectorXd f0 = c0.predict(Effect::none, base, none, rows);
     const Eigen::VectorXd model_effect = c0.predict(eff, base, pv, rows) - f0;
     const Eigen::VectorXd direct_effect =
-        direct_medial(*sim, s0.measured, eff, v) - direct_medial(*sim, s0.measured, Effect::none, 0.0);
+        simulated_medial(*sim, s0.measured, eff, v) - simulated_medial(*sim, s0.measured, Effect::none, 0.0);
     double shape2 = 0.0;
     for (size_t i = 0; i < rows.size(); ++i) {
       const double gen = s1.measured.data.rows[i].value - s0.measured.data.rows[i].value;

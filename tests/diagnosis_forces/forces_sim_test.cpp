@@ -33,9 +33,9 @@ TEST_CASE("forces simulation: the medial force is smooth in the VV alignment (ea
   for (bool instant : {false, true}) {
     sim.set_instant_samples(instant);
     for (double v0 : {-2.0, 2.0}) {
-      const Eigen::VectorXd a = direct_medial(sim, s0.measured, Effect::vv_alignment, v0 - h);
-      const Eigen::VectorXd b = direct_medial(sim, s0.measured, Effect::vv_alignment, v0);
-      const Eigen::VectorXd c = direct_medial(sim, s0.measured, Effect::vv_alignment, v0 + h);
+      const Eigen::VectorXd a = simulated_medial(sim, s0.measured, Effect::vv_alignment, v0 - h);
+      const Eigen::VectorXd b = simulated_medial(sim, s0.measured, Effect::vv_alignment, v0);
+      const Eigen::VectorXd c = simulated_medial(sim, s0.measured, Effect::vv_alignment, v0 + h);
       const double second = (a - 2.0 * b + c).norm() / root_n;
       const double slope = (c - a).norm() / root_n / (2.0 * h);
       MESSAGE(std::string(instant ? "instant" : "mean") << " samples, alignment " << v0 << " deg: slope "

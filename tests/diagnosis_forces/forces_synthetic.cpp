@@ -258,15 +258,4 @@ diagnosis::ForcesDiagnosisReport ForcesBench::diagnose(const ForcesSet& s,
   return diagnosis::diagnose_forces(c, *sim, s.measured.total_N, options);
 }
 
-Eigen::VectorXd direct_medial(diagnosis::ForcesSimulator& sim, const diagnosis::ForcesMeasured& m,
-                              diagnosis::Effect e, double v) {
-  const auto& rows = m.data.rows;
-  Eigen::VectorXd p(static_cast<Eigen::Index>(rows.size()));
-  for (size_t i = 0; i < rows.size(); ++i) {
-    const int k = rows[i].group == "cycle 1" ? 0 : 1;
-    p[static_cast<Eigen::Index>(i)] = sim.run(e, v, k)->share(rows[i].x) * m.total_N[i];
-  }
-  return p;
-}
-
 }  // namespace kneesim::test

@@ -24,8 +24,6 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "analysis/diagnosis/forces_diagnosis.h"
 #include "models/config.h"
 #include "tests/loads/temp_dir.h"
@@ -77,10 +75,5 @@ class ForcesBench {
   int written_ = 0;
   std::map<diagnosis::Effect, std::shared_ptr<diagnosis::DiagnosisCase>> signal_cases_;
 };
-
-// the medial force of every row of `m` from a direct simulation of `e` at `v` (the rig's
-// medial share times the measured total) [N]
-Eigen::VectorXd direct_medial(diagnosis::ForcesSimulator& sim, const diagnosis::ForcesMeasured& m,
-                              diagnosis::Effect e, double v);
 
 }  // namespace kneesim::test

@@ -76,25 +76,37 @@ inline void finish_node_force(const SolidModel& model, SolidData& data, int n) {
 // at t(n) from the mean of the half-step velocities [J]. c = dt damping_alpha / 2.
 inline double advance_node(const SolidModel& model, SolidState& state, const SolidData& data,
                            int n, double dt, double c) {
-  const Eigen::Vector3d v_old = state.velocity[n];
-  Eigen::Vector3d v = ((1.0 - c) * v_old + dt * model.inverse_mass[n] *
-                                               (data.external_force[n] - data.internal_force[n])) /
-                      (1.0 + c);
+  // component by component in scalars (the Eigen form wrote v to the stack in halves and
+  // read it back whole around the constraint: a store-forwarding stall per fixed node); the
+  // same operations in the same order, so the same bits
+  const double* v_old = state.velocity[n].data();
+  const double* f_ext = data.external_force[n].data();
+  const double* f_int = data.internal_force[n].data();
+  const double s = dt * model.inverse_mass[n];
+  double v[3];
+  for (int i = 0; i < 3; ++i) v[i] = ((1.0 - c) * v_old[i] + s * (f_ext[i] - f_int[i])) / (1.0 + c);
   if (data.friction_viscosity[n] > 0.0) {
     // friction implicit: (I + a P)(v_new - v_body) = v - v_body with P the tangential
     // projector, solved by (I + a P)^-1 = I - a / (1 + a) P
     const double a = dt * model.inverse_mass[n] * data.friction_viscosity[n];
     const Eigen::Vector3d& nb = data.friction_normal[n];
-    const Eigen::Vector3d rel = v - data.friction_body_velocity[n];
-    v -= (a / (1.0 + a)) * (rel - rel.dot(nb) * nb);
+    const Eigen::Vector3d rel = Eigen::Vector3d(v[0], v[1], v[2]) - data.friction_body_velocity[n];
+    const Eigen::Vector3d dv = (a / (1.0 + a)) * (rel - rel.dot(nb) * nb);
+    for (int i = 0; i < 3; ++i) v[i] -= dv[i];
   }
-  const uint8_t fixed = model.constraint[n];
+  if (const uint8_t fixed = model.constraint[n]) {
+    for (int i = 0; i < 3; ++i) {
+      if (fixed & (1u << i)) v[i] = data.prescribed_velocity[n][i];
+    }
+  }
+  double* x = state.position[n].data();
+  double* v_new = state.velocity[n].data();
+  const double w0 = v[0] + v_old[0], w1 = v[1] + v_old[1], w2 = v[2] + v_old[2];
   for (int i = 0; i < 3; ++i) {
-    if (fixed & (1u << i)) v[i] = data.prescribed_velocity[n][i];
+    v_new[i] = v[i];
+    x[i] += dt * v[i];
   }
-  state.velocity[n] = v;
-  state.position[n] += dt * v;
-  return 0.125 * model.nodal_mass[n] * (v + v_old).squaredNorm();
+  return 0.125 * model.nodal_mass[n] * (w0 * w0 + w1 * w1 + w2 * w2);
 }
 
 // commits the plastic state loop 1 computed for the batches [b0, b1)

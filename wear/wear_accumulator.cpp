@@ -33,6 +33,7 @@ void WearAccumulator::observe_nodes(const engine::Model& model, const engine::St
   const engine::solid::SurfaceContactData& c = data.insert_contact;
   step_load_ = step_load_slip_ = 0.0;
   for (int i = 0; i < model.insert_contact.size(); ++i) {
+    if (!(c.pressure[i] > 0.0)) continue;  // add() takes nothing from a node out of contact
     // the friction on the node opposes its slip against the femur (engine/insert_solid.h):
     // its direction is the slip direction the cross-shear tensor needs
     const Eigen::Vector3d& f = c.friction_force[i];

@@ -128,7 +128,7 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
     const double m_inv = solid.inverse_mass[node];
     const Eigen::Vector3d v_pred =
         ((1.0 - c_damp) * nodes.velocity[node] +
-         dt * m_inv * (f_normal - sd.internal_force[node])) / (1.0 + c_damp);
+         dt * m_inv * (f_normal - sd.internal_force[node].head<3>())) / (1.0 + c_damp);
     const Eigen::Vector3d rel = v_pred - body_T;
     const Eigen::Vector3d rel_t = rel - rel.dot(normal_T) * normal_T;
     const double a = dt * m_inv * viscosity;

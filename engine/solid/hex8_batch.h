@@ -25,8 +25,8 @@
 // through the scalar calc_stress (the radial return of solid_material.h, unchanged).
 //
 // Instruction set: the vectors are GCC vector extensions (kBatchLanes = 8 doubles), compiled
-// three times, for baseline x86-64 (four SSE2 quarters), AVX2 (two halves) and AVX-512F (one
-// register), and chosen at run time by the CPU. All do the same IEEE operations in the same
+// three times, for baseline x86-64 (four SSE2 quarters), AVX2 (two halves) and AVX-512F with
+// VL (one register), and chosen at run time by the CPU. All do the same IEEE operations in the same
 // order (no FMA: the project builds with -ffp-contract=off and the clones do not enable
 // contraction), so the results are bit-identical on every path, which
 // tests/engine/solid_batch_test.cpp checks. Eight lanes halve the arithmetic instructions per
@@ -39,7 +39,11 @@
 // threads take) gets its contribution stored in a slot of its own instead, and the node pass
 // sums the slots in ascending element order; so every nodal force is the sum over its elements
 // in ascending element order from 0.0, whatever the ranges, bit for bit the sum the separate
-// gather loop formed before.
+// gather loop formed before. A node's accumulator is 4 doubles (x, y, z, 0), so that the
+// AVX-512 path adds an element's force to it with one 4-wide load, add and store after a
+// transpose of the batch's force vectors (the scalar form took three of each and a reload of
+// every force from the batch buffer: about a fifth of a step, by bench_solid with the scatter
+// left out); the fourth component adds 0.0 to 0.0, so every path gives the same bits.
 #pragma once
 
 #include <array>
@@ -108,8 +112,9 @@ void calc_hex8_batch(const Hex8Batch& ref, const SolidMaterial& material,
                      Hex8Isa isa = hex8_batch_isa());
 
 // the same batch with the forces of its `count` elements added where ref.scatter says, lane by
-// lane in ascending order: node_force[3 n + i] += f for scatter >= 0, slot_force[3 s + i] = f
-// for scatter = ~s (the step's fused gather, file comment)
+// lane in ascending order: node_force[4 n + i] += f for scatter >= 0 (4 doubles per node: x,
+// y, z and a zero pad that stays zero), slot_force[3 s + i] = f for scatter = ~s (the step's
+// fused gather, file comment)
 void calc_hex8_batch_scatter(const Hex8Batch& ref, const SolidMaterial& material,
                              const Eigen::Vector3d* x, const Sym6* plastic_strain,
                              const double* alpha, int count, double* node_force,

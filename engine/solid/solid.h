@@ -113,7 +113,10 @@ struct SolidData {
   std::vector<Eigen::Vector3d> friction_normal;     // unit normal of the body, n_nodes
   std::vector<Eigen::Vector3d> friction_body_velocity;  // [m/s], n_nodes
   std::vector<SolidBatchTotals> batch_totals;       // per batch
-  std::vector<Eigen::Vector3d> internal_force;      // summed over the elements [N], n_nodes
+  // summed over the elements [N], n_nodes; (x, y, z, 0): the fourth component pads a node to
+  // one 4-wide vector, so that the element loop adds an element's force to it with one vector
+  // add and store (hex8_batch.cpp)
+  std::vector<Eigen::Vector4d> internal_force;
   std::vector<double> slot_force;          // element forces on shared nodes [N], 3 num_slots
   std::vector<double> von_mises;           // of S [Pa], n_elements
   // per element, filled by calc_solid_forces (not by a step, which needs none of them)

@@ -204,7 +204,7 @@ SolidData make_solid_data(const SolidModel& model) {
   d.friction_normal.assign(nn, Eigen::Vector3d::UnitY());
   d.friction_body_velocity.assign(nn, Eigen::Vector3d::Zero());
   d.batch_totals.resize(model.num_batches());
-  d.internal_force.assign(nn, Eigen::Vector3d::Zero());
+  d.internal_force.assign(nn, Eigen::Vector4d::Zero());
   d.slot_force.assign(3 * static_cast<size_t>(model.num_slots), 0.0);
   d.von_mises.assign(ne, 0.0);
   d.stress.assign(ne, Sym6::Zero());

@@ -69,7 +69,7 @@ inline void finish_node_force(const SolidModel& model, SolidData& data, int n) {
     fy += f[1];
     fz += f[2];
   }
-  data.internal_force[n] = Eigen::Vector3d(fx, fy, fz);
+  data.internal_force[n] = Eigen::Vector4d(fx, fy, fz, 0.0);
 }
 
 // the central-difference update of node n with the forces in data; returns its kinetic energy

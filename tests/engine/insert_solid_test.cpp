@@ -76,7 +76,7 @@ TEST_CASE("deformable insert: femur, solid and tray balance the applied load") {
     if (i >= steps - window) {
       Eigen::Vector3d reaction = Eigen::Vector3d::Zero();
       for (int b : m.insert_base_nodes) {
-        reaction -= data.X_WT.linear() * data.insert_solid.internal_force[b];
+        reaction -= data.X_WT.linear() * data.insert_solid.internal_force[b].head<3>();
       }
       femur += data.contact.force_W.y() / window;
       base += reaction.y() / window;

@@ -140,9 +140,14 @@ void calc_insert_solid_forces(const Model& model, const State& state, Data& data
   };
   // the node loop: each node's contact (top nodes), then its update when the step moves
   auto node_work = [&](int node) {
+    // only top nodes carry an external force (the contact's), and no node a friction
+    // viscosity (the friction is an explicit force above): the update reads neither otherwise
     const int i = contact.index_of_node[node];
-    if (i >= 0) contact_node(i, node);
-    return move ? solid::advance_node(solid, *advance, sd, node, dt, c_damp) : 0.0;
+    if (i >= 0) {
+      contact_node(i, node);
+      return move ? solid::advance_node<true, false>(solid, *advance, sd, node, dt, c_damp) : 0.0;
+    }
+    return move ? solid::advance_node<false, false>(solid, *advance, sd, node, dt, c_damp) : 0.0;
   };
   solid::run_node_loop(solid, move ? advance : nullptr, sd, node_work);
 

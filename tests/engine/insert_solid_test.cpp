@@ -90,6 +90,17 @@ TEST_CASE("deformable insert: femur, solid and tray balance the applied load") {
   CHECK(femur == doctest::Approx(applied).epsilon(0.05));
   CHECK(worst_exchange < 1e-9 * applied);
   CHECK(-base == doctest::Approx(femur).epsilon(0.05));
+  // what the node update relies on to skip reading them (engine/insert_solid.cpp): only top
+  // nodes carry an external force, and no node a friction viscosity
+  std::vector<char> top(m.insert_solid.num_nodes(), 0);
+  for (int i = 0; i < m.insert_contact.size(); ++i) top[m.insert_contact.nodes[i]] = 1;
+  int loaded_elsewhere = 0, with_viscosity = 0;
+  for (int n = 0; n < m.insert_solid.num_nodes(); ++n) {
+    if (!top[n] && data.insert_solid.external_force[n] != Eigen::Vector3d::Zero()) ++loaded_elsewhere;
+    if (data.insert_solid.friction_viscosity[n] != 0.0) ++with_viscosity;
+  }
+  CHECK(loaded_elsewhere == 0);
+  CHECK(with_viscosity == 0);
 }
 
 TEST_CASE("deformable insert: bit-identical for any thread and range count, with or without "

@@ -152,7 +152,7 @@ __attribute__((target("avx2"), always_inline)) inline void load_positions_avx2(
   }
 }
 
-// the lanes [o, o + L) of a batch at node positions x (gathered by one of the above); `count`
+// the lanes [o, o + L) of a batch at node positions x (loaded by one of the above); `count`
 // of them are elements (count >= 1). Each lane's arithmetic is the same whatever L and o, so
 // every path gives the same bits. The lanes' forces go to `force`
 template <bool kPlastic, int L>
@@ -246,9 +246,9 @@ inline __attribute__((always_inline)) void batch_kernel(
   {
     const Vec a = S[0] - S[1], b = S[1] - S[2], c = S[2] - S[0];
     const Vec vm_sq = 0.5 * (a * a + b * b + c * c) + 3.0 * (S[3] * S[3] + S[4] * S[4] + S[5] * S[5]);
-    // the square; its root is taken for the whole batch by the kernel of each instruction set
-    // (sqrt_von_mises: one vector square root, where lane by lane it was a scalar root and
-    // store per lane, a twelfth of the AVX-512 kernel's time)
+    // the square; each instruction set's kernel takes the whole batch's roots with one vector
+    // root (sqrt_von_mises_*: a scalar root and store per lane had about 8 % of the AVX-512
+    // kernel's samples)
     store<L>(out.von_mises + o, vm_sq);
   }
   // first Piola-Kirchhoff times the volume, P = V0 F S (S symmetric, full index map)
@@ -444,8 +444,8 @@ __attribute__((target("avx2"))) void kernel_avx2(const Hex8Batch& ref, const Sol
     batch_kernel<kPlastic, 4>(ref, mat, xv, ep, alpha, count - 4, force, out, 4);
   }
   sqrt_von_mises_avx2(out, count > 4 ? 8 : 4);
-  if constexpr (kScatter) scatter_lanes(ref, force, 0, count, force_out);  // (a transpose as
-  // scatter_avx512's, on 4-wide vectors, measured no faster here)
+  // the scalar scatter: a transpose as scatter_avx512's, on 4-wide vectors, measured no faster
+  if constexpr (kScatter) scatter_lanes(ref, force, 0, count, force_out);
 }
 
 template <bool kPlastic, bool kScatter>

@@ -297,16 +297,16 @@ inline __attribute__((always_inline)) void batch_kernel(
   }
 }
 
-// the scatter (file comment) of lanes [o, o + count) of the batch's forces: lane by lane
+// the scatter (file comment) of the batch's `count` elements' forces: lane by lane
 // (ascending element order), each element's eight nodes; a node summed in place is 4 doubles
 // (x, y, z, 0), a slot 3 (the pointers in locals: read through force_out they were reloaded
 // after every store, which may alias)
 inline __attribute__((always_inline)) void scatter_lanes(const Hex8Batch& ref,
-                                                         const Hex8BatchForce& force, int o,
+                                                         const Hex8BatchForce& force,
                                                          int count, const ForceOut& force_out) {
   double* const node_force = force_out.node_force;
   double* const slot_force = force_out.slot_force;
-  for (int l = o; l < o + count; ++l) {
+  for (int l = 0; l < count; ++l) {
     for (int a = 0; a < kHexNodes; ++a) {
       const int s = ref.scatter[a][l];
       const double fx = force.f[a][0][l], fy = force.f[a][1][l], fz = force.f[a][2][l];
@@ -414,7 +414,7 @@ inline __attribute__((always_inline)) void batch_halves(
     gather_positions<4>(ref, xs, 4, x);
     batch_kernel<kPlastic, 4>(ref, mat, x, ep, alpha, count - 4, force, out, 4);
   }
-  if constexpr (kScatter) scatter_lanes(ref, force, 0, count, force_out);
+  if constexpr (kScatter) scatter_lanes(ref, force, count, force_out);
 }
 
 using Kernel = void (*)(const Hex8Batch&, const SolidMaterial&, const Eigen::Vector3d*,
@@ -445,7 +445,7 @@ __attribute__((target("avx2"))) void kernel_avx2(const Hex8Batch& ref, const Sol
   }
   sqrt_von_mises_avx2(out, count > 4 ? 8 : 4);
   // the scalar scatter: a transpose as scatter_avx512's, on 4-wide vectors, measured no faster
-  if constexpr (kScatter) scatter_lanes(ref, force, 0, count, force_out);
+  if constexpr (kScatter) scatter_lanes(ref, force, count, force_out);
 }
 
 template <bool kPlastic, bool kScatter>

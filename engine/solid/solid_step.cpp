@@ -127,7 +127,11 @@ SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& da
   run_element_loop(model, state, data, false);
   if (data.status != SolidStatus::kOk) return data.status;
   const double c = 0.5 * dt * model.damping_alpha;
-  auto advance = [&](int n) { return advance_node(model, state, data, n, dt, c); };
+  // the update inlined into the node loop (gcc 12 left it a call per node: bench_solid on 2
+  // threads 64.6-65.3 M updates/s with the call, 67.9-70.3 inlined, three alternating runs)
+  auto advance = [&](int n) __attribute__((always_inline)) {
+    return advance_node(model, state, data, n, dt, c);
+  };
   run_node_loop(model, &state, data, advance);
   return SolidStatus::kOk;
 }

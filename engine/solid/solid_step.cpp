@@ -130,7 +130,7 @@ SolidStatus step_solid(const SolidModel& model, SolidState& state, SolidData& da
   // the update inlined into the node loop (gcc 12 left it a call per node: bench_solid on 2
   // threads 64.6-65.3 M updates/s with the call, 67.9-70.3 inlined, three alternating runs)
   auto advance = [&](int n) __attribute__((always_inline)) {
-    return advance_node(model, state, data, n, dt, c);
+    return advance_node_inlined(model, state, data, n, dt, c);
   };
   run_node_loop(model, &state, data, advance);
   return SolidStatus::kOk;

@@ -10,6 +10,14 @@
 // runs on one thread; run it on a quiet machine in a Release build:
 //
 //   build/tools/bench_engine [--repeats 5] [--cycles 1]
+//
+// With --deformable it times instead one gait cycle of the deformable insert (1.15 mm
+// elements: 10 080, the size of issue 30's figure) from rest, wall clock, on 1 and 2 threads
+// alternately, on an idle machine and with one core kept busy by a spinning child process
+// (busy_core.h), and prints issue 30's rows: 2 threads within 10 s idle, and never slower
+// than 1 thread with a core busy. Both thread counts give the same bits, which it checks.
+//
+//   build/tools/bench_engine --deformable [--repeats 3]
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,6 +34,7 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
+#include "busy_core.h"
 #include "engine/simulate.h"
 #include "models/build_model.h"
 #include "models/distance_field_disk.h"
@@ -237,14 +246,98 @@ models::BuiltModel build(double edge_mm, const std::string& integrator) {
   return models::build_model(models::load_config("", o));
 }
 
+// --deformable: one gait cycle from rest, wall seconds, per thread count (1, 2), alternating
+struct CycleRuns {
+  std::vector<double> wall;
+  std::vector<engine::Frame> frames;  // of the last run
+};
+
+std::vector<CycleRuns> time_deformable_cycles(const std::vector<models::BuiltModel>& built,
+                                              int repeats) {
+  std::vector<CycleRuns> runs(built.size());
+  for (int r = 0; r < repeats; ++r) {
+    for (size_t k = 0; k < built.size(); ++k) {
+      const engine::Model& model = built[k].model;
+      engine::State state = engine::make_initial_state(model);
+      engine::Data data = engine::make_data(model);
+      engine::RunOptions o;
+      o.cycles = 1;
+      const double w0 = wall_seconds();
+      engine::RunResult res = engine::simulate(model, state, data, o);
+      runs[k].wall.push_back(wall_seconds() - w0);
+      if (res.status != engine::StepStatus::kOk) {
+        std::fprintf(stderr, "bench_engine: the deformable cycle stopped: %s\n",
+                     engine::to_string(res.status));
+        std::exit(1);
+      }
+      runs[k].frames = std::move(res.frames);
+    }
+  }
+  return runs;
+}
+
+int bench_deformable(int repeats) {
+  const int threads[] = {1, 2};
+  std::vector<models::BuiltModel> built;
+  for (int t : threads) {
+    built.push_back(models::build_model(models::load_config(
+        "", {{"insert", "\"deformable\""},
+             {"deformable.element_size_mm", "1.15"},
+             {"solver.threads", std::to_string(t)}})));
+  }
+  std::printf("kneesim deformable gait cycle: %d elements, one cycle from rest, wall seconds, "
+              "median (min-max) of %d runs per thread count, alternating\n",
+              built[0].model.insert_solid.num_elements(), repeats);
+  std::printf("\n| condition | 1 thread (s) | 2 threads (s) | 2 threads / 1 thread, speed | same "
+              "bits |\n|---|---|---|---|---|\n");
+  double idle2 = 0, busy_ratio = 0;
+  for (const bool busy : {false, true}) {
+    const pid_t spinner = busy ? bench::start_busy_core("bench_engine") : 0;
+    const std::vector<CycleRuns> runs = time_deformable_cycles(built, repeats);
+    if (busy) bench::stop_busy_core(spinner);
+    const double m1 = median(runs[0].wall), m2 = median(runs[1].wall);
+    bool same = runs[0].frames.size() == runs[1].frames.size();
+    for (size_t i = 0; same && i < runs[0].frames.size(); ++i) {
+      same = runs[0].frames[i].q == runs[1].frames[i].q;
+    }
+    const auto [lo1, hi1] = std::minmax_element(runs[0].wall.begin(), runs[0].wall.end());
+    const auto [lo2, hi2] = std::minmax_element(runs[1].wall.begin(), runs[1].wall.end());
+    std::printf("| %s | %.2f (%.2f-%.2f) | %.2f (%.2f-%.2f) | %.2f | %s |\n",
+                busy ? "one core busy (spinning child)" : "idle", m1, *lo1, *hi1, m2, *lo2, *hi2,
+                m1 / m2, same ? "yes" : "NO");
+    std::fflush(stdout);
+    (busy ? busy_ratio : idle2) = busy ? m1 / m2 : m2;
+  }
+  std::printf("\n| acceptance (issue 30) | measured | asked |\n|---|---|---|\n");
+  std::printf("| one cycle of about 10 000 elements on 2 threads, idle (s) | %.2f | <= 10 |\n",
+              idle2);
+  std::printf("| 2 threads / 1 thread, speed, one core busy | %.2f | >= 0.9 (never slower) |\n",
+              busy_ratio);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  int repeats = 5, cycles = 1;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--repeats")) repeats = std::max(1, std::atoi(argv[i + 1]));
-    if (!std::strcmp(argv[i], "--cycles")) cycles = std::max(1, std::atoi(argv[i + 1]));
+  int repeats = 0, cycles = 1;  // repeats: 5, or 3 with --deformable (a cycle takes 10-20 s)
+  bool deformable = false;
+  for (int i = 1; i < argc; ++i) {
+    const bool value = i + 1 < argc;
+    if (!std::strcmp(argv[i], "--deformable")) {
+      deformable = true;
+    } else if (!std::strcmp(argv[i], "--repeats") && value) {
+      repeats = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--cycles") && value) {
+      cycles = std::max(1, std::atoi(argv[++i]));
+    } else {
+      std::fprintf(stderr, "bench_engine: unknown option or missing value: %s\nusage: "
+                   "bench_engine [--repeats N] [--cycles N] | --deformable [--repeats N]\n",
+                   argv[i]);
+      return 2;
+    }
   }
+  if (deformable) return bench_deformable(repeats > 0 ? repeats : 3);
+  if (repeats == 0) repeats = 5;
   std::printf("kneesim engine benchmark: median of %d runs, %d timed cycle(s) each, 1 thread, "
               "CPU time\n\n", repeats, cycles);
   std::printf("| insert edge (mm) | elements | steps/cycle | evaluations/step | s/cycle | "

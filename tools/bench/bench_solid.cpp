@@ -21,9 +21,6 @@
 //
 // --idle-and-busy measures both conditions one after the other and prints the acceptance table.
 // --fixed-team switches the team's never-slower policy off (the team runs every loop).
-#include <signal.h>
-#include <sys/prctl.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -36,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "busy_core.h"
 #include "engine/solid/solid_build.h"
 #include "engine/solid/solid_step.h"
 #include "models/hex_mesh.h"
@@ -140,28 +138,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-// a child process that spins on a core until killed
-pid_t start_spinner() {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlives the bench
-    if (getppid() == 1) _exit(0);
-    volatile unsigned long x = 0;
-    for (;;) x = x + 1;
-  }
-  if (pid < 0) {
-    std::perror("bench_solid: fork");
-    std::exit(1);
-  }
-  usleep(200000);  // let the scheduler place it
-  return pid;
-}
-
-void stop_spinner(pid_t pid) {
-  kill(pid, SIGKILL);
-  waitpid(pid, nullptr, 0);
-}
-
 struct Result {
   double wall_rate = 0, cpu_rate = 0;  // M updates per wall / CPU second, medians
   double wall_min = 0, wall_max = 0;   // M updates per wall second
@@ -251,7 +227,7 @@ struct Bench {
 };
 
 std::vector<Result> measure_condition(const Bench& bench, const Options& o, bool busy) {
-  pid_t spinner = busy ? start_spinner() : 0;
+  pid_t spinner = busy ? bench::start_busy_core("bench_solid") : 0;
   std::printf("\n%s: load average before %s\n", busy ? "one core busy (spinning child)" : "idle",
               load_average().c_str());
   const std::vector<Result> r = bench.measure();
@@ -264,7 +240,7 @@ std::vector<Result> measure_condition(const Bench& bench, const Options& o, bool
                 r[k].stats.stolen_tasks, r[k].stats.unhelped_loops, r[k].stats.solo_switches);
   }
   std::printf("load average after %s\n", load_average().c_str());
-  if (busy) stop_spinner(spinner);
+  if (busy) bench::stop_busy_core(spinner);
   std::fflush(stdout);
   return r;
 }

@@ -306,7 +306,11 @@ int bench_deformable(int repeats) {
                 busy ? "one core busy (spinning child)" : "idle", m1, *lo1, *hi1, m2, *lo2, *hi2,
                 m1 / m2, same ? "yes" : "NO");
     std::fflush(stdout);
-    (busy ? busy_ratio : idle2) = busy ? m1 / m2 : m2;
+    if (busy) {
+      busy_ratio = m1 / m2;
+    } else {
+      idle2 = m2;
+    }
   }
   std::printf("\n| acceptance (issue 30) | measured | asked |\n|---|---|---|\n");
   std::printf("| one cycle of about 10 000 elements on 2 threads, idle (s) | %.2f | <= 10 |\n",
